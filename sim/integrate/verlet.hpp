@@ -1,0 +1,53 @@
+#pragma once
+// Velocity Verlet, split in two stages around the force phase:
+//   drift:  v += dt/2 F/m;  x += dt v          (and w += dt/2 T/I when rotating)
+//   kick:   v += dt/2 F/m                      (and w += dt/2 T/I)
+// Rotation is a template parameter: a scene without rotational degrees of
+// freedom instantiates the translational version only. Spheres have an
+// isotropic inertia, so w integrates directly in the world frame; bodies
+// with orientation use the quaternion integrator (integrate/rotation.hpp).
+#include <string>
+
+#include "sim/scene/stage.hpp"
+
+namespace grains::sim {
+
+template <bool Rotation>
+inline void verlet_half_kick(ParticleStore& p, double half_dt) {
+  const std::size_t n = p.n_owned();
+  for (std::size_t i = 0; i < n; ++i) p.v[i] += (half_dt * p.inv_mass[i]) * p.f[i];
+  if constexpr (Rotation)
+    for (std::size_t i = 0; i < n; ++i) p.omega[i] += (half_dt / p.inertia[i].x()) * p.torque[i];
+}
+
+template <bool Rotation>
+class VerletDrift final : public Stage {
+ public:
+  std::string name() const override { return Rotation ? "verlet.kick_drift+rotation" : "verlet.kick_drift"; }
+  Phase phase() const override { return Phase::Drift; }
+  void run(Scene& s) override {
+    ParticleStore& p = s.particles;
+    const double dt = s.clock.dt;
+    verlet_half_kick<Rotation>(p, 0.5 * dt);
+    const std::size_t n = p.n_owned();
+    for (std::size_t i = 0; i < n; ++i) p.x[i] += dt * p.v[i];
+  }
+};
+
+template <bool Rotation>
+class VerletKick final : public Stage {
+ public:
+  std::string name() const override { return Rotation ? "verlet.kick+rotation" : "verlet.kick"; }
+  Phase phase() const override { return Phase::Kick; }
+  void run(Scene& s) override { verlet_half_kick<Rotation>(s.particles, 0.5 * s.clock.dt); }
+};
+
+/// Moves walls with their prescribed velocities (only when some wall moves).
+class MoveWalls final : public Stage {
+ public:
+  std::string name() const override { return "walls.move"; }
+  Phase phase() const override { return Phase::Drift; }
+  void run(Scene& s) override { s.walls.advance(s.clock.dt); }
+};
+
+}  // namespace grains::sim

@@ -1,0 +1,63 @@
+#pragma once
+// A contact law composed of slots (normal, tangential, rolling, cohesion),
+// each a small struct with static traits. The composition knows nothing
+// about shapes: it consumes a contact::ContactGeometry and the relative
+// motion at the contact point. An absent slot is an empty struct, so its
+// code and its history vanish at compile time (no run-time "enabled" flags).
+#include <string>
+
+#include <Eigen/Core>
+
+#include "contact/contact_geometry.hpp"
+#include "sim/laws/cohesion.hpp"
+#include "sim/laws/normal_hertz.hpp"
+#include "sim/laws/rolling.hpp"
+#include "sim/laws/tangential.hpp"
+
+namespace grains::sim {
+
+template <class Tangential, class Rolling, class Cohesion>
+struct ContactLaw {
+  using T = Tangential;
+  using R = Rolling;
+  using C = Cohesion;
+  static constexpr int tangential_history = T::history_size;
+  static constexpr int history_size = T::history_size + R::history_size;
+  static constexpr bool needs_rotation = T::needs_rotation || R::needs_rotation;
+
+  static std::string name() {
+    return std::string("hertz") + "+tangential:" + T::name + "+rolling:" + R::name + "+cohesion:" + C::name;
+  }
+
+  struct Result {
+    Eigen::Vector3d force;         // on body i; body j receives -force
+    Eigen::Vector3d rolling_torque;  // on body i; body j receives minus it
+  };
+
+  /// v_rel: velocity of i relative to j at the contact point; w_rel = omega_i - omega_j
+  /// (ignored without rotation). m: effective mass. hist: history_size doubles.
+  static inline Result evaluate(const contact::ContactGeometry& g, const Eigen::Vector3d& v_rel,
+                                const Eigen::Vector3d& w_rel, double m, const PairParams& p, double dt,
+                                double* hist) {
+    const Eigen::Vector3d& n = g.normal;
+    const double vn = v_rel.dot(n);
+    const NormalState ns = HertzNormal::evaluate(g.overlap, -vn, g.radius, m, p);
+    Result out;
+    out.force = n * (ns.force - C::force(g.overlap, g.radius, p));
+    if constexpr (T::history_size > 0) {
+      const Eigen::Vector3d vt = v_rel - n * vn;
+      out.force += T::force(n, vt, ns, m, p, dt, hist);
+    }
+    if constexpr (R::history_size > 0) {
+      out.rolling_torque = R::torque(n, w_rel, ns, g.radius, p, dt, hist + T::history_size);
+    } else {
+      out.rolling_torque.setZero();
+    }
+    (void)w_rel;
+    (void)dt;
+    (void)hist;
+    return out;
+  }
+};
+
+}  // namespace grains::sim

@@ -1,0 +1,49 @@
+#include "sim/laws/material.hpp"
+
+#include "sim/laws/restitution.hpp"
+
+namespace grains::sim {
+
+PairTable::PairTable(const std::vector<Material>& mats, const std::vector<PairOverride>& overrides)
+    : n_(static_cast<int>(mats.size())), table_(mats.size() * mats.size()) {
+  for (int a = 0; a < n_; ++a)
+    for (int b = 0; b < n_; ++b) {
+      const Material& A = mats[a];
+      const Material& B = mats[b];
+      PairParams p;
+      p.E_eff = 1.0 / ((1 - A.poisson_ratio * A.poisson_ratio) / A.youngs_modulus +
+                       (1 - B.poisson_ratio * B.poisson_ratio) / B.youngs_modulus);
+      p.G_eff = 1.0 / ((2 - A.poisson_ratio) / A.shear_modulus() + (2 - B.poisson_ratio) / B.shear_modulus());
+      p.restitution = 0.5 * (A.restitution + B.restitution);
+      p.friction = 0.5 * (A.friction + B.friction);
+      p.rolling_friction = 0.5 * (A.rolling_friction + B.rolling_friction);
+      p.cohesion = 0.5 * (A.cohesion + B.cohesion);
+      for (const auto& o : overrides)
+        if ((o.a == a && o.b == b) || (o.a == b && o.b == a)) {
+          if (o.restitution >= 0) p.restitution = o.restitution;
+          if (o.friction >= 0) p.friction = o.friction;
+          if (o.rolling_friction >= 0) p.rolling_friction = o.rolling_friction;
+          if (o.cohesion >= 0) p.cohesion = o.cohesion;
+        }
+      p.damping = damping_for_restitution(p.restitution);
+      table_[static_cast<std::size_t>(a) * n_ + b] = p;
+    }
+}
+
+bool PairTable::any_friction() const {
+  for (const auto& p : table_)
+    if (p.friction > 0) return true;
+  return false;
+}
+bool PairTable::any_rolling() const {
+  for (const auto& p : table_)
+    if (p.rolling_friction > 0) return true;
+  return false;
+}
+bool PairTable::any_cohesion() const {
+  for (const auto& p : table_)
+    if (p.cohesion > 0) return true;
+  return false;
+}
+
+}  // namespace grains::sim

@@ -1,0 +1,47 @@
+#pragma once
+// Materials and the table of mixed pair parameters.
+#include <string>
+#include <vector>
+
+#include "sim/laws/pair_params.hpp"
+
+namespace grains::sim {
+
+struct Material {
+  std::string name;
+  double density = 0;           // kg/m^3
+  double youngs_modulus = 0;    // Pa
+  double poisson_ratio = 0;     // -
+  double restitution = 1;       // -
+  double friction = 0;          // sliding, -
+  double rolling_friction = 0;  // -
+  double cohesion = 0;          // cohesion energy density, J/m^3
+  double shear_modulus() const { return youngs_modulus / (2 * (1 + poisson_ratio)); }
+};
+
+/// Optional override of the mixed values for one pair of materials.
+struct PairOverride {
+  int a = -1, b = -1;
+  double restitution = -1, friction = -1, rolling_friction = -1, cohesion = -1;  // < 0: not given
+};
+
+/// n x n symmetric table of PairParams. Mixing rules (documented in
+/// docs/physics.md): E* and G* from the Hertz/Mindlin formulas; restitution,
+/// friction, rolling friction and cohesion are the arithmetic mean of the two
+/// materials unless a pair override gives them.
+class PairTable {
+ public:
+  PairTable() = default;
+  PairTable(const std::vector<Material>& mats, const std::vector<PairOverride>& overrides);
+  const PairParams& operator()(int a, int b) const { return table_[static_cast<std::size_t>(a) * n_ + b]; }
+  int size() const { return n_; }
+  bool any_friction() const;
+  bool any_rolling() const;
+  bool any_cohesion() const;
+
+ private:
+  int n_ = 0;
+  std::vector<PairParams> table_;
+};
+
+}  // namespace grains::sim

@@ -1,0 +1,59 @@
+#pragma once
+// Particle-particle contacts of spheres: geometry from contact/sphere.hpp,
+// force from the composed Law. One instantiation per law composition; the
+// kernel has no branches for absent effects.
+#include <algorithm>
+
+#include "contact/sphere.hpp"
+#include "sim/laws/contact_law.hpp"
+#include "sim/scene/stage.hpp"
+
+namespace grains::sim {
+
+template <class Law>
+class PairContactStage final : public Stage {
+ public:
+  std::string name() const override { return "force.pair_contacts<" + Law::name() + ">"; }
+  Phase phase() const override { return Phase::Force; }
+
+  void run(Scene& s) override {
+    ParticleStore& p = s.particles;
+    NeighborList& nl = s.neighbors;
+    constexpr int H = Law::history_size;
+    const double dt = s.clock.dt;
+    const std::size_t rows = nl.row_start.empty() ? 0 : nl.row_start.size() - 1;
+    for (std::size_t i = 0; i < rows; ++i) {
+      const Vec3 xi = p.x[i];
+      const double ri = p.radius[i];
+      for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
+        const std::size_t j = nl.partner[k];
+        double* hist = H > 0 ? nl.history.data() + static_cast<std::size_t>(k) * H : nullptr;
+        contact::ContactGeometry g;
+        if (!contact::sphere_sphere(xi, ri, p.x[j], p.radius[j], g)) {
+          if constexpr (H > 0) std::fill_n(hist, H, 0.0);
+          continue;
+        }
+        const double m = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+        const PairParams& pp = s.pairs(p.material[i], p.material[j]);
+        Vec3 v_rel = p.v[i] - p.v[j];
+        Vec3 w_rel = Vec3::Zero();
+        Vec3 ci, cj;
+        if constexpr (Law::needs_rotation) {
+          ci = g.point - xi;
+          cj = g.point - p.x[j];
+          v_rel += p.omega[i].cross(ci) - p.omega[j].cross(cj);
+          w_rel = p.omega[i] - p.omega[j];
+        }
+        const auto r = Law::evaluate(g, v_rel, w_rel, m, pp, dt, hist);
+        p.f[i] += r.force;
+        p.f[j] -= r.force;
+        if constexpr (Law::needs_rotation) {
+          p.torque[i] += ci.cross(r.force) + r.rolling_torque;
+          p.torque[j] -= cj.cross(r.force) + r.rolling_torque;
+        }
+      }
+    }
+  }
+};
+
+}  // namespace grains::sim

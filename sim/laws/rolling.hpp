@@ -1,0 +1,53 @@
+#pragma once
+// Rolling-resistance slot.
+//  * NoRolling.
+//  * EpsdRolling: elastic-plastic spring-dashpot model (Ai, Chen, Rotter & Ooi,
+//    Powder Technol. 206, 2011, model type C without the viscous term): a
+//    rolling spring of stiffness k_r = 2.25 S_n mu_r^2 R*^2 on the relative
+//    rotation, torque limited to mu_r R* F_n (full mobilisation). The torque
+//    is kept as 3 doubles of history, rotated into the tangent plane.
+// Case-file key: materials[].rolling_friction.
+#include <cmath>
+
+#include <Eigen/Core>
+
+#include "sim/laws/normal_hertz.hpp"
+
+namespace grains::sim {
+
+struct NoRolling {
+  static constexpr int history_size = 0;
+  static constexpr bool needs_rotation = false;
+  static constexpr const char* name = "none";
+  static inline Eigen::Vector3d torque(const Eigen::Vector3d&, const Eigen::Vector3d&, const NormalState&, double,
+                                       const PairParams&, double, double*) {
+    return Eigen::Vector3d::Zero();
+  }
+};
+
+struct EpsdRolling {
+  static constexpr int history_size = 3;
+  static constexpr bool needs_rotation = true;
+  static constexpr const char* name = "epsd";
+  /// w_rel = omega_i - omega_j. Returns the rolling torque on i (j gets minus it).
+  static inline Eigen::Vector3d torque(const Eigen::Vector3d& n, const Eigen::Vector3d& w_rel,
+                                       const NormalState& ns, double R, const PairParams& p, double dt,
+                                       double* h) {
+    Eigen::Map<Eigen::Vector3d> mr(h);
+    const double len2 = mr.squaredNorm();
+    if (len2 > 0) {
+      mr -= n * n.dot(mr);
+      const double l2 = mr.squaredNorm();
+      if (l2 > 0) mr *= std::sqrt(len2 / l2);
+    }
+    const Eigen::Vector3d wr = w_rel - n * n.dot(w_rel);
+    const double kr = 2.25 * ns.stiffness * p.rolling_friction * p.rolling_friction * R * R;
+    mr -= kr * dt * wr;
+    const double limit = p.rolling_friction * R * ns.force;
+    const double m2 = mr.squaredNorm();
+    if (m2 > limit * limit && m2 > 0) mr *= limit / std::sqrt(m2);
+    return mr;
+  }
+};
+
+}  // namespace grains::sim

@@ -1,0 +1,61 @@
+#pragma once
+// Tangential slot.
+//  * NoTangential: frictionless; no history, no rotation fields.
+//  * MindlinTangential: incremental Mindlin no-slip spring k_t = 8 G* sqrt(R* d)
+//    on the accumulated tangential displacement xi (3 doubles of history per
+//    contact), viscous damping eta_t = a sqrt(2/3) sqrt(m* k_t) (the same
+//    calibrated ratio as the normal slot), Coulomb limit |F_t| <= mu F_n. The
+//    history is rotated into the current tangent plane each step (magnitude
+//    kept) and, while sliding, reset to the spring length that gives the
+//    Coulomb force.
+// Case-file keys: materials[].friction, materials[].poisson_ratio.
+#include <cmath>
+
+#include <Eigen/Core>
+
+#include "sim/laws/normal_hertz.hpp"
+
+namespace grains::sim {
+
+struct NoTangential {
+  static constexpr int history_size = 0;
+  static constexpr bool needs_rotation = false;
+  static constexpr const char* name = "none";
+  static inline Eigen::Vector3d force(const Eigen::Vector3d&, const Eigen::Vector3d&, const NormalState&,
+                                      double, const PairParams&, double, double*) {
+    return Eigen::Vector3d::Zero();
+  }
+};
+
+struct MindlinTangential {
+  static constexpr int history_size = 3;
+  static constexpr bool needs_rotation = true;
+  static constexpr const char* name = "mindlin";
+  /// n: unit normal (j -> i); vt: tangential relative velocity of i w.r.t. j at the contact point.
+  static inline Eigen::Vector3d force(const Eigen::Vector3d& n, const Eigen::Vector3d& vt, const NormalState& ns,
+                                      double m, const PairParams& p, double dt, double* h) {
+    Eigen::Map<Eigen::Vector3d> xi(h);
+    // Rotate the stored spring into the tangent plane, keeping its length.
+    const double len2 = xi.squaredNorm();
+    if (len2 > 0) {
+      xi -= n * n.dot(xi);
+      const double l2 = xi.squaredNorm();
+      if (l2 > 0) xi *= std::sqrt(len2 / l2);
+    }
+    xi += vt * dt;
+    const double kt = 8.0 * p.G_eff * ns.sqrt_Rd;
+    const double eta = p.damping * 0.816496580927726 * std::sqrt(m * kt);  // a sqrt(2/3) sqrt(m k_t)
+    Eigen::Vector3d ft = -kt * xi - eta * vt;
+    const double limit = p.friction * ns.force;
+    const double ft2 = ft.squaredNorm();
+    if (ft2 > limit * limit) {
+      if (ft2 > 0) {
+        ft *= limit / std::sqrt(ft2);
+        xi = kt > 0 ? Eigen::Vector3d(-(ft + eta * vt) / kt) : Eigen::Vector3d::Zero();
+      }
+    }
+    return ft;
+  }
+};
+
+}  // namespace grains::sim

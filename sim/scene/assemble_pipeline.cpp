@@ -1,0 +1,64 @@
+// Assembles the step pipeline from what the scene needs. The law slots are
+// chosen here once, at run time, and each choice is a separate template
+// instantiation, so the per-contact kernels carry no flags.
+#include "sim/integrate/verlet.hpp"
+#include "sim/laws/pair_contact_stage.hpp"
+#include "sim/neighbor/neighbor_stage.hpp"
+#include "sim/scene/body_forces.hpp"
+#include "sim/scene/build_scene.hpp"
+#include "sim/walls/wall_contact_stage.hpp"
+
+namespace grains::sim {
+
+namespace {
+
+template <class Law>
+void add_contact_stages(Pipeline& p, const SceneNeeds& n) {
+  p.add(std::make_unique<PairContactStage<Law>>());
+  if (n.planes) p.add(std::make_unique<PlaneWallStage<Law>>());
+  if (n.cylinders) p.add(std::make_unique<CylinderWallStage<Law>>());
+}
+
+template <class T, class R>
+void dispatch_cohesion(Pipeline& p, const SceneNeeds& n) {
+  if (n.cohesion)
+    add_contact_stages<ContactLaw<T, R, SjkrCohesion>>(p, n);
+  else
+    add_contact_stages<ContactLaw<T, R, NoCohesion>>(p, n);
+}
+
+template <class T>
+void dispatch_rolling(Pipeline& p, const SceneNeeds& n) {
+  if (n.rolling)
+    dispatch_cohesion<T, EpsdRolling>(p, n);
+  else
+    dispatch_cohesion<T, NoRolling>(p, n);
+}
+
+template <bool Rot>
+void add_integrator(Pipeline& p) {
+  p.add(std::make_unique<VerletDrift<Rot>>());
+  p.add(std::make_unique<ClearForces<Rot>>());
+  p.add(std::make_unique<VerletKick<Rot>>());
+}
+
+}  // namespace
+
+Pipeline assemble_pipeline(const Scene& s, const SceneConfig& c) {
+  const SceneNeeds n = scene_needs(c, s.pairs);
+  Pipeline p;
+  if (n.rotation)
+    add_integrator<true>(p);
+  else
+    add_integrator<false>(p);
+  if (n.moving_walls) p.add(std::make_unique<MoveWalls>());
+  p.add(std::make_unique<NeighborStage>(c.sort_particles));
+  if (n.gravity) p.add(std::make_unique<Gravity>());
+  if (n.tangential)
+    dispatch_rolling<MindlinTangential>(p, n);
+  else
+    dispatch_rolling<NoTangential>(p, n);
+  return p;
+}
+
+}  // namespace grains::sim

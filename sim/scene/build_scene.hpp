@@ -1,0 +1,36 @@
+#pragma once
+// From a SceneConfig to a ready Scene and its step pipeline.
+#include <memory>
+
+#include "sim/scene/scene_config.hpp"
+#include "sim/scene/stage.hpp"
+
+namespace grains::sim {
+
+/// What the scene needs, decided once from the config: which law slots,
+/// which optional particle fields, which stages.
+struct SceneNeeds {
+  bool tangential = false, rolling = false, cohesion = false;
+  bool rotation = false;
+  bool gravity = false, planes = false, cylinders = false, moving_walls = false;
+  int history_size = 0;  // per contact
+  FieldSet fields;
+};
+
+SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs);
+
+/// Rayleigh time pi r sqrt(rho/G) / (0.1631 nu + 0.8766), the smallest over
+/// the particle sets (smallest radius of each size distribution).
+double rayleigh_time(const SceneConfig& c);
+
+/// Places the particles and sets the clock. Throws SetupError for problems
+/// a user can fix (with the case-file location), e.g. an over-full region,
+/// overlapping initial positions, a time step above the Rayleigh time.
+/// Warnings (e.g. dt above 0.3 Rayleigh times) are appended to c.warnings.
+Scene build_scene(SceneConfig& c);
+
+/// The physics stages the scene calls for, in phase order. Outputs are added
+/// by the caller (io).
+Pipeline assemble_pipeline(const Scene& s, const SceneConfig& c);
+
+}  // namespace grains::sim

@@ -1,0 +1,233 @@
+#include "sim/scene/placement.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <unordered_map>
+
+namespace grains::sim {
+
+double SizeDistribution::smallest() const {
+  switch (kind) {
+    case Kind::Fixed: return radius;
+    case Kind::Discrete: return *std::min_element(values.begin(), values.end());
+    default: return min;
+  }
+}
+double SizeDistribution::largest() const {
+  switch (kind) {
+    case Kind::Fixed: return radius;
+    case Kind::Discrete: return *std::max_element(values.begin(), values.end());
+    default: return max;
+  }
+}
+
+std::vector<double> sample_radii(const SizeDistribution& d, std::int64_t count, std::mt19937_64& rng) {
+  std::vector<double> r(static_cast<std::size_t>(count));
+  using K = SizeDistribution::Kind;
+  switch (d.kind) {
+    case K::Fixed: std::fill(r.begin(), r.end(), d.radius); break;
+    case K::Uniform: {
+      std::uniform_real_distribution<double> u(d.min, d.max);
+      for (auto& x : r) x = u(rng);
+      break;
+    }
+    case K::Normal:
+    case K::LogNormal: {
+      // Truncated by rejection to [min, max]; for the log-normal, mean and
+      // stddev are those of the radius, converted to the underlying normal.
+      double mu = d.mean, sigma = d.stddev;
+      if (d.kind == K::LogNormal) {
+        const double s2 = std::log(1 + (d.stddev * d.stddev) / (d.mean * d.mean));
+        sigma = std::sqrt(s2);
+        mu = std::log(d.mean) - 0.5 * s2;
+      }
+      std::normal_distribution<double> nd(mu, sigma);
+      for (auto& x : r) {
+        for (int t = 0;; ++t) {
+          double v = nd(rng);
+          if (d.kind == K::LogNormal) v = std::exp(v);
+          if ((v >= d.min && v <= d.max) || t > 1000) {
+            x = std::clamp(v, d.min, d.max);
+            break;
+          }
+        }
+      }
+      break;
+    }
+    case K::Discrete: {
+      std::discrete_distribution<std::size_t> dd(d.weights.begin(), d.weights.end());
+      for (auto& x : r) x = d.values[dd(rng)];
+      break;
+    }
+  }
+  return r;
+}
+
+namespace {
+
+// Hash grid of placed spheres for overlap queries during placement.
+class PlacementGrid {
+ public:
+  explicit PlacementGrid(double cell) : cell_(cell) {}
+  void insert(const Vec3& x, double r, std::size_t idx) {
+    (void)r;
+    cells_[key(cell_of(x))].push_back(idx);
+  }
+  template <class Fn>
+  bool any_near(const Vec3& x, Fn&& overlaps) const {
+    const auto c = cell_of(x);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
+          if (it == cells_.end()) continue;
+          for (auto j : it->second)
+            if (overlaps(j)) return true;
+        }
+    return false;
+  }
+
+ private:
+  std::array<long, 3> cell_of(const Vec3& x) const {
+    return {static_cast<long>(std::floor(x[0] / cell_)), static_cast<long>(std::floor(x[1] / cell_)),
+            static_cast<long>(std::floor(x[2] / cell_))};
+  }
+  static long long key(const std::array<long, 3>& c) {
+    return ((static_cast<long long>(c[0]) & 0x1FFFFF) << 42) | ((static_cast<long long>(c[1]) & 0x1FFFFF) << 21) |
+           (static_cast<long long>(c[2]) & 0x1FFFFF);
+  }
+  double cell_;
+  std::unordered_map<long long, std::vector<std::size_t>> cells_;
+};
+
+std::string fmt(double v) {
+  std::ostringstream o;
+  o.precision(6);
+  o << v;
+  return o.str();
+}
+
+}  // namespace
+
+std::vector<PlacedParticle> place_particles(const SceneConfig& c) {
+  double rmax = 0;
+  for (const auto& s : c.sets) rmax = std::max(rmax, s.size.largest());
+  PlacementGrid grid(2 * rmax);
+  std::vector<PlacedParticle> out;
+  for (std::size_t si = 0; si < c.sets.size(); ++si) {
+    const auto& set = c.sets[si];
+    std::mt19937_64 rng(set.placement.seed);
+    const auto& reg = set.placement.region;
+    auto free_at = [&](const Vec3& x, double r) {
+      return !grid.any_near(x, [&](std::size_t j) { return (out[j].x - x).squaredNorm() < (out[j].r + r) * (out[j].r + r); });
+    };
+    auto put = [&](const Vec3& x, double r, std::size_t k) {
+      grid.insert(x, r, out.size());
+      out.push_back({x, r, static_cast<int>(si), k});
+    };
+    switch (set.placement.kind) {
+      case Placement::Kind::RandomFill: {
+        auto radii = sample_radii(set.size, set.count, rng);
+        std::sort(radii.begin(), radii.end(), std::greater<>());  // largest first
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        const std::int64_t budget = 2000;  // consecutive failed attempts before giving up
+        for (std::size_t k = 0; k < radii.size(); ++k) {
+          const double r = radii[k];
+          const Vec3 lo = reg.lo + Vec3::Constant(r), hi = reg.hi - Vec3::Constant(r);
+          if ((hi.array() < lo.array()).any())
+            throw SetupError(set.where + ": particle set '" + set.name + "': a particle of radius " + fmt(r) +
+                             " m does not fit in the fill region; make the region larger than the diameter");
+          bool placed = false;
+          for (std::int64_t t = 0; t < budget && !placed; ++t) {
+            const Vec3 x(lo[0] + u(rng) * (hi[0] - lo[0]), lo[1] + u(rng) * (hi[1] - lo[1]),
+                         lo[2] + u(rng) * (hi[2] - lo[2]));
+            if (free_at(x, r)) {
+              put(x, r, k);
+              placed = true;
+            }
+          }
+          if (!placed) {
+            const Vec3 e = reg.hi - reg.lo;
+            double vol = 0;
+            for (std::size_t q = 0; q < k; ++q) vol += 4.0 / 3.0 * M_PI * radii[q] * radii[q] * radii[q];
+            throw SetupError(set.where + ": particle set '" + set.name + "': placed only " + std::to_string(k) +
+                             " of " + std::to_string(set.count) +
+                             " particles in the fill region (solid fraction reached " +
+                             fmt(vol / (e[0] * e[1] * e[2])) +
+                             "; random filling stalls near 0.3). Enlarge placement.region or lower count");
+          }
+        }
+        break;
+      }
+      case Placement::Kind::Lattice: {
+        const double rl = set.size.largest();
+        const double a = set.placement.spacing > 0 ? set.placement.spacing : 2 * rl * (1 + 1e-6);
+        std::array<long, 3> n{};
+        for (int d = 0; d < 3; ++d) n[d] = static_cast<long>(std::floor((reg.hi[d] - reg.lo[d] - 2 * rl) / a)) + 1;
+        if (n[0] <= 0 || n[1] <= 0 || n[2] <= 0)
+          throw SetupError(set.where + ": particle set '" + set.name + "': the lattice region is smaller than one particle");
+        const std::int64_t cap = static_cast<std::int64_t>(n[0]) * n[1] * n[2];
+        const std::int64_t want = set.count > 0 ? set.count : cap;
+        if (want > cap)
+          throw SetupError(set.where + ": particle set '" + set.name + "': the lattice region holds " +
+                           std::to_string(cap) + " sites at spacing " + fmt(a) + " m but count is " +
+                           std::to_string(want) + "; enlarge the region or lower count");
+        auto radii = sample_radii(set.size, want, rng);
+        for (std::int64_t k = 0; k < want; ++k) {
+          const long ix = k % n[0], iy = (k / n[0]) % n[1], iz = k / (n[0] * n[1]);
+          const Vec3 x = reg.lo + Vec3::Constant(rl) + a * Vec3(ix, iy, iz);
+          put(x, radii[k], static_cast<std::size_t>(k));
+        }
+        break;
+      }
+      case Placement::Kind::File: {
+        const auto& pos = set.placement.positions;
+        std::vector<double> radii = set.placement.radii;
+        if (radii.empty()) radii = sample_radii(set.size, static_cast<std::int64_t>(pos.size()), rng);
+        for (std::size_t k = 0; k < pos.size(); ++k) put(pos[k], radii[k], k);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+void check_overlaps(const SceneConfig& c, const std::vector<PlacedParticle>& p) {
+  double rmax = 0;
+  for (const auto& q : p) rmax = std::max(rmax, q.r);
+  if (p.empty()) return;
+  PlacementGrid grid(2 * rmax);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    std::size_t other = 0;
+    const bool bad = grid.any_near(p[i].x, [&](std::size_t j) {
+      const double d = (p[j].x - p[i].x).norm();
+      const double ov = p[i].r + p[j].r - d;
+      if (ov > c.overlap_tolerance * std::min(p[i].r, p[j].r)) {
+        other = j;
+        return true;
+      }
+      return false;
+    });
+    if (bad) {
+      const auto& a = p[other];
+      const auto& b = p[i];
+      auto where = [&](const PlacedParticle& q) {
+        const auto& s = c.sets[q.set];
+        if (s.placement.kind == Placement::Kind::File && q.index_in_set < s.placement.position_where.size())
+          return s.placement.position_where[q.index_in_set];
+        return s.where;
+      };
+      const double ov = a.r + b.r - (a.x - b.x).norm();
+      throw SetupError(where(b) + ": initial particles overlap: particle " + std::to_string(b.index_in_set) +
+                       " of set '" + c.sets[b.set].name + "' and particle " + std::to_string(a.index_in_set) +
+                       " of set '" + c.sets[a.set].name + "' overlap by " + fmt(ov) + " m (" +
+                       fmt(100 * ov / std::min(a.r, b.r)) + "% of the smaller radius; at most " +
+                       fmt(100 * c.overlap_tolerance) + "% is accepted)" +
+                       (where(a) != where(b) ? " (other particle at " + where(a) + ")" : ""));
+    }
+    grid.insert(p[i].x, p[i].r, i);
+  }
+}
+
+}  // namespace grains::sim

@@ -1,0 +1,75 @@
+#pragma once
+// A validated, unit-explicit description of a scene: what io::Case hands to
+// sim. Every value here is in SI units and already range-checked; `where`
+// strings (file:line:column) let set-up errors point back at the case file.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sim/laws/material.hpp"
+#include "sim/scene/scene.hpp"
+#include "sim/walls/walls.hpp"
+
+namespace grains::sim {
+
+/// Thrown for a problem a user can fix in the case file (or its inputs).
+struct SetupError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct SizeDistribution {
+  enum class Kind { Fixed, Uniform, Normal, LogNormal, Discrete } kind = Kind::Fixed;
+  double radius = 0;             // Fixed
+  double min = 0, max = 0;       // Uniform; truncation bounds for Normal/LogNormal
+  double mean = 0, stddev = 0;   // Normal/LogNormal (of the radius itself)
+  std::vector<double> values, weights;  // Discrete
+  double smallest() const;
+  double largest() const;
+};
+
+struct Region {
+  Vec3 lo{0, 0, 0}, hi{0, 0, 0};
+};
+
+struct Placement {
+  enum class Kind { RandomFill, Lattice, File } kind = Kind::RandomFill;
+  Region region;
+  double spacing = 0;  // Lattice; 0 = largest diameter
+  std::uint64_t seed = 1;
+  std::vector<Vec3> positions;   // File
+  std::vector<double> radii;     // File (optional 4th column)
+  std::vector<std::string> position_where;  // File: file:line of each position
+};
+
+struct ParticleSetConfig {
+  std::string name;
+  int material = 0;
+  SizeDistribution size;
+  std::int64_t count = 0;  // 0 with Lattice: fill the region
+  Placement placement;
+  Vec3 velocity{0, 0, 0};
+  std::string where;
+};
+
+enum class SlotChoice { Auto, None, On };
+
+struct SceneConfig {
+  Domain domain;
+  Vec3 gravity{0, 0, 0};
+  std::vector<Material> materials;
+  std::vector<PairOverride> overrides;
+  std::vector<ParticleSetConfig> sets;
+  Walls walls;
+  SlotChoice tangential = SlotChoice::Auto, rolling = SlotChoice::Auto, cohesion = SlotChoice::Auto;
+  double dt = 0;           // absolute time step, or 0
+  double dt_rayleigh = 0;  // fraction of the Rayleigh time, or 0
+  std::string dt_where;
+  double end_time = 0;
+  double skin = 0.1;       // neighbour skin as a fraction of the largest diameter
+  bool sort_particles = true;
+  double overlap_tolerance = 0.01;  // initial overlaps above this fraction of the smaller radius are refused
+  std::vector<std::string> warnings;  // filled by build_scene
+};
+
+}  // namespace grains::sim

@@ -1,0 +1,108 @@
+// Case-file keys of the scene sections (domain, particles, time, neighbour
+// lists, gravity) and the registry of all sim effects.
+#include <limits>
+
+#include "sim/scene/effect_doc.hpp"
+
+namespace grains::sim {
+
+std::vector<EffectDoc> law_docs();
+std::vector<EffectDoc> wall_docs();
+
+namespace {
+
+std::vector<EffectDoc> scene_docs() {
+  const double inf = std::numeric_limits<double>::infinity();
+  using K = KeyType;
+  std::vector<EffectDoc> d;
+  d.push_back({"case", "(top level)", "A grains case file. All values in SI units.",
+               {key("title", K::String, "free text"), key("description", K::String, "free text"),
+                key("domain", K::Map, "the simulation box").req(),
+                key("gravity", K::Vec3, "gravitational acceleration; absent or zero: no gravity stage").si("m/s^2"),
+                key("materials", K::List, "materials (see materials)").req(),
+                key("contact", K::Map, "contact law slots and pair overrides (see contact)"),
+                key("particles", K::List, "particle sets (see particles)").req(),
+                key("walls", K::List, "walls (see walls.plane, walls.cylinder)"),
+                key("time", K::Map, "time stepping (see time)").req(),
+                key("neighbor", K::Map, "neighbour lists (see neighbor)"),
+                key("output", K::Map, "output (see output)")}});
+  d.push_back({"domain", "domain: {...}",
+               "The box particles live in; a particle that leaves it is removed and counted in the summary.",
+               {key("min", K::Vec3, "lower corner").req().si("m"), key("max", K::Vec3, "upper corner").req().si("m")}});
+  d.push_back({"force.gravity", "gravity: [gx, gy, gz]", "Uniform gravity, F = m g. A stage only when non-zero.",
+               {key("gravity", K::Vec3, "acceleration").si("m/s^2")}});
+  d.push_back({"particles", "particles: [ {...}, ... ]", "A set of spherical particles.",
+               {key("name", K::String, "label").def("set<k>"),
+                key("material", K::String, "material name").req(),
+                key("radius", K::Number,
+                    "a radius (number) or a size distribution (map, see particles.radius)")
+                    .req().si("m").in(0, inf, true),
+                key("count", K::Integer, "number of particles (lattice: optional, fills the region)").in(1, 1e12),
+                key("placement", K::Map, "where the particles start (see placement.*)").req(),
+                key("velocity", K::Vec3, "initial velocity").def("[0, 0, 0]").si("m/s")}});
+  d.push_back({"particles.radius", "radius: {distribution: ..., ...}", "A particle size distribution (radii).",
+               {key("distribution", K::String, "kind").req().one_of({"uniform", "normal", "lognormal", "discrete"}),
+                key("min", K::Number, "smallest radius (uniform; truncation for normal/lognormal)").si("m").in(0, inf, true),
+                key("max", K::Number, "largest radius (uniform; truncation for normal/lognormal)").si("m").in(0, inf, true),
+                key("mean", K::Number, "mean radius (normal, lognormal)").si("m").in(0, inf, true),
+                key("std", K::Number, "standard deviation of the radius (normal, lognormal)").si("m").in(0, inf),
+                key("values", K::NumberList, "radii (discrete)").si("m"),
+                key("weights", K::NumberList, "relative number frequencies of values (discrete)")}});
+  d.push_back({"placement.random_fill", "placement: {type: random_fill, ...}",
+               "Random non-overlapping fill of a box region (random sequential addition, largest first).",
+               {key("type", K::String, "placement kind").req().one_of({"random_fill", "lattice", "file"}),
+                key("region", K::Map, "{min: [..], max: [..]} box that holds the whole particles").req(),
+                key("seed", K::Integer, "random seed").def("1").in(0, 1.8e19)}});
+  d.push_back({"placement.lattice", "placement: {type: lattice, ...}", "A simple cubic lattice filling a box region.",
+               {key("type", K::String, "placement kind").req().one_of({"random_fill", "lattice", "file"}),
+                key("region", K::Map, "{min: [..], max: [..]}").req(),
+                key("spacing", K::Number, "lattice spacing; default the largest diameter").si("m").in(0, inf, true),
+                key("seed", K::Integer, "random seed for radii from a distribution").def("1").in(0, 1.8e19)}});
+  d.push_back({"placement.file", "placement: {type: file, ...}",
+               "Positions from a text file: one particle per line, 'x y z' or 'x y z r' (comma or space "
+               "separated, # comments). With r the file's radii replace the set's radius.",
+               {key("type", K::String, "placement kind").req().one_of({"random_fill", "lattice", "file"}),
+                key("path", K::String, "file path, relative to the case file").req(),
+                key("seed", K::Integer, "random seed for radii from a distribution").def("1").in(0, 1.8e19)}});
+  d.push_back({"time", "time: {...}", "Time stepping (velocity Verlet).",
+               {key("end", K::Number, "simulated end time").req().si("s").in(0, inf, true),
+                key("dt", K::Number, "time step (give dt or dt_rayleigh)").si("s").in(0, inf, true),
+                key("dt_rayleigh", K::Number,
+                    "time step as a fraction of the Rayleigh time of the smallest particle; warned above 0.3, "
+                    "refused above 1")
+                    .in(0, 1, true, false),
+                key("integrator", K::String, "time integrator").def("verlet").one_of({"verlet"})}});
+  d.push_back({"neighbor", "neighbor: {...}",
+               "Linked-cell Verlet lists, rebuilt when a particle has moved half the skin.",
+               {key("skin", K::Number, "skin as a fraction of the largest particle diameter").def("0.1").in(0, 10, true),
+                key("sort", K::Bool, "re-sort particles by cell at each rebuild (memory locality)").def("true"),
+                key("overlap_tolerance", K::Number,
+                    "initial overlaps above this fraction of the smaller radius are refused")
+                    .def("0.01").in(0, 1)}});
+  return d;
+}
+
+}  // namespace
+
+std::vector<EffectDoc>& mutable_docs() {
+  static std::vector<EffectDoc> all = [] {
+    std::vector<EffectDoc> a = scene_docs();
+    for (auto& x : law_docs()) a.push_back(std::move(x));
+    for (auto& x : wall_docs()) a.push_back(std::move(x));
+    return a;
+  }();
+  return all;
+}
+
+const std::vector<EffectDoc>& effect_docs() { return mutable_docs(); }
+
+void register_effect_doc(EffectDoc d) {
+  for (auto& e : mutable_docs())
+    if (e.name == d.name) {
+      e = std::move(d);
+      return;
+    }
+  mutable_docs().push_back(std::move(d));
+}
+
+}  // namespace grains::sim

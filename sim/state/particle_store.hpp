@@ -1,0 +1,97 @@
+#pragma once
+// ParticleStore: the particles of one rank as a structure of arrays.
+//
+// Layout decisions (they carry every later feature):
+//  * Indices [0, n_owned) are the particles this rank integrates; indices
+//    [n_owned, size) are ghosts (copies of particles owned elsewhere: another
+//    MPI rank or a periodic image). Ghosts carry kinematics and shape but
+//    are never integrated.
+//  * Every particle has a global id that never changes; contact history is
+//    keyed by ids, not by local indices, so it survives re-sorting and can
+//    travel with its particle to another rank.
+//  * Core fields always exist. Optional fields exist only when an effect of
+//    the scene declares them (FieldSet): a scene of frictionless spheres
+//    allocates no angular velocity, torque, inertia or orientation at all.
+//  * Per-particle wall history (one slot group per wall that keeps history)
+//    is a per-particle field, so it moves and permutes with its particle.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace grains::sim {
+
+using Vec3 = Eigen::Vector3d;
+using Quat = Eigen::Quaterniond;
+
+/// Optional per-particle fields. Core fields (id, position, velocity, force,
+/// radius, mass, material, shape) are not listed: they always exist.
+enum class Field : std::uint32_t {
+  AngularVelocity = 1u << 0,  // omega, world frame
+  Torque = 1u << 1,           // world frame
+  Inertia = 1u << 2,          // principal moments (body frame); spheres use x only
+  Orientation = 1u << 3,      // unit quaternion body -> world
+  WallHistory = 1u << 4,      // history slots for particle-wall contacts
+};
+
+class FieldSet {
+ public:
+  constexpr FieldSet() = default;
+  constexpr FieldSet(Field f) : bits_(static_cast<std::uint32_t>(f)) {}
+  constexpr FieldSet operator|(FieldSet o) const { return FieldSet(bits_ | o.bits_); }
+  constexpr FieldSet& operator|=(FieldSet o) { bits_ |= o.bits_; return *this; }
+  constexpr bool has(Field f) const { return (bits_ & static_cast<std::uint32_t>(f)) != 0; }
+  constexpr bool operator==(const FieldSet&) const = default;
+
+ private:
+  constexpr explicit FieldSet(std::uint32_t b) : bits_(b) {}
+  std::uint32_t bits_ = 0;
+};
+
+class ParticleStore {
+ public:
+  /// Declare the optional fields before adding particles. wall_history_size is
+  /// the number of doubles of history kept per particle for all walls together.
+  void configure(FieldSet fields, int wall_history_size);
+
+  FieldSet fields() const { return fields_; }
+  int wall_history_size() const { return wall_history_size_; }
+  /// Names of the fields that exist, core first (for `grains check`).
+  std::vector<std::string> field_names() const;
+
+  std::size_t size() const { return id.size(); }
+  std::size_t n_owned() const { return n_owned_; }
+  std::size_t n_ghost() const { return size() - n_owned_; }
+
+  /// Append an owned particle (ghosts must be dropped first). Returns its index.
+  std::size_t add(std::int64_t gid, const Vec3& x, const Vec3& v, double r, double m,
+                  int material, int shape = 0);
+  /// Append a ghost copy of particle `src` of `from` shifted by `shift`.
+  void add_ghost(const ParticleStore& from, std::size_t src, const Vec3& shift);
+  void clear_ghosts();
+  /// Remove owned particles whose flag is set (order of the rest is kept).
+  void remove_if(const std::vector<char>& remove);
+  /// Reorder owned particles: new index k takes old index order[k].
+  void permute(const std::vector<std::size_t>& order);
+
+  // ---- core fields ----
+  std::vector<std::int64_t> id;
+  std::vector<Vec3> x, v, f;
+  std::vector<double> radius, mass, inv_mass;
+  std::vector<std::int32_t> material, shape;
+  // ---- optional fields (empty unless declared) ----
+  std::vector<Vec3> omega, torque, inertia;
+  std::vector<Quat> orientation;
+  std::vector<double> wall_history;  // size() * wall_history_size()
+
+ private:
+  template <class Fn>
+  void for_each_field(Fn&& fn);
+  FieldSet fields_{};
+  int wall_history_size_ = 0;
+  std::size_t n_owned_ = 0;
+};
+
+}  // namespace grains::sim

@@ -1,0 +1,78 @@
+#pragma once
+// Sphere-wall contacts through the same Law as particle pairs: the wall is
+// body j with infinite mass (m* = m_i), the wall's velocity and no spin.
+// History per (particle, wall) lives in the particle's wall-history field.
+#include <algorithm>
+
+#include "sim/laws/contact_law.hpp"
+#include "sim/scene/stage.hpp"
+
+namespace grains::sim {
+
+template <class Law>
+struct WallContact {
+  static inline void apply(ParticleStore& p, std::size_t i, const contact::ContactGeometry& g,
+                           const Vec3& wall_velocity, const PairParams& pp, double dt, double* hist) {
+    Vec3 v_rel = p.v[i] - wall_velocity;
+    Vec3 w_rel = Vec3::Zero();
+    Vec3 ci;
+    if constexpr (Law::needs_rotation) {
+      ci = g.point - p.x[i];
+      v_rel += p.omega[i].cross(ci);
+      w_rel = p.omega[i];
+    }
+    const auto r = Law::evaluate(g, v_rel, w_rel, p.mass[i], pp, dt, hist);
+    p.f[i] += r.force;
+    if constexpr (Law::needs_rotation) p.torque[i] += ci.cross(r.force) + r.rolling_torque;
+  }
+};
+
+template <class Law>
+class PlaneWallStage final : public Stage {
+ public:
+  std::string name() const override { return "force.plane_walls<" + Law::name() + ">"; }
+  Phase phase() const override { return Phase::Force; }
+  void run(Scene& s) override {
+    ParticleStore& p = s.particles;
+    constexpr int H = Law::history_size;
+    const int WH = p.wall_history_size();
+    for (std::size_t w = 0; w < s.walls.planes.size(); ++w) {
+      const PlaneWall& wall = s.walls.planes[w];
+      for (const auto i : s.neighbors.plane_near[w]) {
+        double* hist = H > 0 ? p.wall_history.data() + static_cast<std::size_t>(i) * WH + wall.history_slot * H : nullptr;
+        contact::ContactGeometry g;
+        if (!contact::sphere_plane(p.x[i], p.radius[i], wall.point, wall.normal, g)) {
+          if constexpr (H > 0) std::fill_n(hist, H, 0.0);
+          continue;
+        }
+        WallContact<Law>::apply(p, i, g, wall.velocity, s.pairs(p.material[i], wall.material), s.clock.dt, hist);
+      }
+    }
+  }
+};
+
+template <class Law>
+class CylinderWallStage final : public Stage {
+ public:
+  std::string name() const override { return "force.cylinder_walls<" + Law::name() + ">"; }
+  Phase phase() const override { return Phase::Force; }
+  void run(Scene& s) override {
+    ParticleStore& p = s.particles;
+    constexpr int H = Law::history_size;
+    const int WH = p.wall_history_size();
+    for (std::size_t w = 0; w < s.walls.cylinders.size(); ++w) {
+      const CylinderWall& wall = s.walls.cylinders[w];
+      for (const auto i : s.neighbors.cylinder_near[w]) {
+        double* hist = H > 0 ? p.wall_history.data() + static_cast<std::size_t>(i) * WH + wall.history_slot * H : nullptr;
+        contact::ContactGeometry g;
+        if (!contact::sphere_cylinder(p.x[i], p.radius[i], wall.surface, g)) {
+          if constexpr (H > 0) std::fill_n(hist, H, 0.0);
+          continue;
+        }
+        WallContact<Law>::apply(p, i, g, wall.velocity, s.pairs(p.material[i], wall.material), s.clock.dt, hist);
+      }
+    }
+  }
+};
+
+}  // namespace grains::sim
