@@ -1,0 +1,525 @@
+#include "io/case/case.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+namespace grains::io {
+
+using sim::EffectDoc;
+using sim::Vec3;
+
+void register_io_docs() {
+  static const bool once = [] {
+    using K = sim::KeyType;
+    const double inf = std::numeric_limits<double>::infinity();
+    sim::register_effect_doc(
+        {"output", "output: {...}",
+         "What a run writes into its output folder (grains run -o DIR): VTK frames (particles .vtu, walls .vtp, "
+         "a .pvd series each), a progress line on stderr and summary.json.",
+         {sim::key("every", K::Number, "simulated time between frames (first and last frame always written)")
+              .si("s").in(0, inf, true),
+          sim::key("every_steps", K::Integer, "steps between frames (instead of every)").in(1, 1e15),
+          sim::key("vtk", K::Bool, "write VTK frames").def("true"),
+          sim::key("progress", K::Bool, "print a progress line to stderr (also -q)").def("true"),
+          sim::key("progress_interval", K::Number, "wall-clock time between progress lines").def("2").si("s").in(0, inf)}});
+    return true;
+  }();
+  (void)once;
+}
+
+namespace {
+
+const EffectDoc& doc(const std::string& name) {
+  const EffectDoc* d = sim::find_effect_doc(name);
+  if (!d) throw std::logic_error("no documentation for effect " + name);
+  return *d;
+}
+
+std::string idx(const std::string& list, std::size_t i) { return list + "[" + std::to_string(i) + "]"; }
+
+class CaseParser {
+ public:
+  CaseParser(Case& c, Validator& v) : c_(c), v_(v) {}
+
+  void parse() {
+    const YAML::Node& root = c_.root;
+    if (!v_.check_map(root, doc("case"), "")) return;
+    parse_domain(root["domain"]);
+    auto& sc = c_.scene;
+    if (root["gravity"]) sc.gravity = v_.vec3(root, doc("case"), "gravity", "");
+    parse_materials(root["materials"]);
+    parse_contact(root["contact"]);
+    parse_particles(root["particles"]);
+    parse_walls(root["walls"]);
+    parse_time(root["time"]);
+    parse_neighbor(root["neighbor"]);
+    parse_output(root["output"]);
+  }
+
+ private:
+  void parse_domain(const YAML::Node& n) {
+    if (!n) return;
+    const auto& d = doc("domain");
+    if (!v_.check_map(n, d, "domain")) return;
+    auto& dom = c_.scene.domain;
+    dom.lo = v_.vec3(n, d, "min", "domain");
+    dom.hi = v_.vec3(n, d, "max", "domain");
+    if (n["min"] && n["max"] && ((dom.hi - dom.lo).array() <= 0).any())
+      v_.error(n["max"], "domain", "max must exceed min in every coordinate");
+  }
+
+  void parse_materials(const YAML::Node& n) {
+    if (!n) return;
+    if (!n.IsSequence() || n.size() == 0) {
+      v_.error(n, "materials", "expected a non-empty list of materials");
+      return;
+    }
+    const auto& d = doc("materials");
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      const auto ctx = idx("materials", i);
+      const YAML::Node m = n[i];
+      if (!v_.check_map(m, d, ctx)) continue;
+      sim::Material mat;
+      mat.name = v_.string(m, d, "name", ctx);
+      mat.density = v_.number(m, d, "density", ctx, 1);
+      mat.youngs_modulus = v_.number(m, d, "youngs_modulus", ctx, 1);
+      mat.poisson_ratio = v_.number(m, d, "poisson_ratio", ctx, 0.3);
+      mat.restitution = v_.number(m, d, "restitution", ctx, 0.5);
+      mat.friction = v_.number(m, d, "friction", ctx, 0);
+      mat.rolling_friction = v_.number(m, d, "rolling_friction", ctx, 0);
+      mat.cohesion = v_.number(m, d, "cohesion_energy_density", ctx, 0);
+      if (material_index_.count(mat.name)) v_.error(m["name"], ctx, "material '" + mat.name + "' is defined twice");
+      material_index_[mat.name] = static_cast<int>(c_.scene.materials.size());
+      c_.scene.materials.push_back(mat);
+    }
+  }
+
+  int material(const YAML::Node& map, const EffectDoc& d, const std::string& ctx) {
+    const YAML::Node n = map["material"];
+    if (!n) return 0;
+    const std::string name = v_.string(map, d, "material", ctx);
+    auto it = material_index_.find(name);
+    if (it != material_index_.end()) return it->second;
+    std::vector<std::string> names;
+    for (const auto& m : c_.scene.materials) names.push_back(m.name);
+    const std::string guess = closest(name, names);
+    std::string list;
+    for (const auto& s : names) list += (list.empty() ? "" : ", ") + s;
+    v_.error(n, ctx, "unknown material '" + name + "'" + (guess.empty() ? "" : "; did you mean '" + guess + "'?") +
+                         " defined materials: " + list);
+    return 0;
+  }
+
+  static sim::SlotChoice slot(const std::string& s) {
+    if (s == "auto") return sim::SlotChoice::Auto;
+    if (s == "none") return sim::SlotChoice::None;
+    return sim::SlotChoice::On;
+  }
+
+  void parse_contact(const YAML::Node& n) {
+    if (!n) return;
+    const auto& d = doc("contact");
+    if (!v_.check_map(n, d, "contact")) return;
+    (void)v_.string(n, d, "model", "contact", "hertz");
+    c_.scene.tangential = slot(v_.string(n, d, "tangential", "contact", "auto"));
+    c_.scene.rolling = slot(v_.string(n, d, "rolling", "contact", "auto"));
+    c_.scene.cohesion = slot(v_.string(n, d, "cohesion", "contact", "auto"));
+    const YAML::Node pairs = n["pairs"];
+    if (!pairs) return;
+    if (!pairs.IsSequence()) {
+      v_.error(pairs, "contact.pairs", "expected a list of pair overrides");
+      return;
+    }
+    const auto& pd = doc("contact.pairs");
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const auto ctx = idx("contact.pairs", i);
+      const YAML::Node p = pairs[i];
+      if (!v_.check_map(p, pd, ctx)) continue;
+      sim::PairOverride o;
+      const YAML::Node ms = p["materials"];
+      if (ms && (!ms.IsSequence() || ms.size() != 2)) {
+        v_.error(ms, ctx, "materials must be a list of two material names");
+      } else if (ms) {
+        for (int k = 0; k < 2; ++k) {
+          YAML::Node tmp;
+          tmp["material"] = ms[k];
+          const int m = material_by_name(ms[k], ctx);
+          (k == 0 ? o.a : o.b) = m;
+        }
+      }
+      o.restitution = v_.number(p, pd, "restitution", ctx, -1);
+      o.friction = v_.number(p, pd, "friction", ctx, -1);
+      o.rolling_friction = v_.number(p, pd, "rolling_friction", ctx, -1);
+      o.cohesion = v_.number(p, pd, "cohesion_energy_density", ctx, -1);
+      c_.scene.overrides.push_back(o);
+    }
+  }
+
+  int material_by_name(const YAML::Node& n, const std::string& ctx) {
+    if (!n.IsScalar()) {
+      v_.error(n, ctx, "expected a material name");
+      return 0;
+    }
+    auto it = material_index_.find(n.Scalar());
+    if (it != material_index_.end()) return it->second;
+    v_.error(n, ctx, "unknown material '" + n.Scalar() + "'");
+    return 0;
+  }
+
+  sim::Region region(const YAML::Node& n, const std::string& ctx) {
+    static const EffectDoc rd{"region", "region: {min: [..], max: [..]}", "a box",
+                              {sim::key("min", sim::KeyType::Vec3, "lower corner").req().si("m"),
+                               sim::key("max", sim::KeyType::Vec3, "upper corner").req().si("m")}};
+    sim::Region r;
+    if (!v_.check_map(n, rd, ctx)) return r;
+    r.lo = v_.vec3(n, rd, "min", ctx);
+    r.hi = v_.vec3(n, rd, "max", ctx);
+    if (n["min"] && n["max"] && ((r.hi - r.lo).array() <= 0).any())
+      v_.error(n["max"], ctx, "max must exceed min in every coordinate");
+    return r;
+  }
+
+  void parse_radius(const YAML::Node& set, sim::ParticleSetConfig& p, const std::string& ctx) {
+    const YAML::Node r = set["radius"];
+    if (!r) return;
+    const auto& d = doc("particles");
+    if (r.IsScalar()) {
+      p.size.radius = v_.number(set, d, "radius", ctx, 1);
+      return;
+    }
+    const auto& dd = doc("particles.radius");
+    const auto c2 = ctx + ".radius";
+    if (!v_.check_map(r, dd, c2)) return;
+    using K = sim::SizeDistribution::Kind;
+    const std::string kind = v_.string(r, dd, "distribution", c2, "uniform");
+    auto& s = p.size;
+    auto need = [&](const char* k) {
+      if (!r[k]) v_.error(r, c2, std::string("distribution '") + kind + "' needs key '" + k + "'");
+    };
+    if (kind == "uniform" || kind == "normal" || kind == "lognormal") {
+      s.kind = kind == "uniform" ? K::Uniform : kind == "normal" ? K::Normal : K::LogNormal;
+      need("min");
+      need("max");
+      s.min = v_.number(r, dd, "min", c2, 1);
+      s.max = v_.number(r, dd, "max", c2, 1);
+      if (s.max < s.min) v_.error(r["max"], c2, "max must be >= min");
+      if (kind != "uniform") {
+        need("mean");
+        need("std");
+        s.mean = v_.number(r, dd, "mean", c2, 1);
+        s.stddev = v_.number(r, dd, "std", c2, 0);
+      }
+    } else if (kind == "discrete") {
+      s.kind = K::Discrete;
+      need("values");
+      s.values = v_.numbers(r, dd, "values", c2);
+      s.weights = r["weights"] ? v_.numbers(r, dd, "weights", c2) : std::vector<double>(s.values.size(), 1.0);
+      if (s.values.empty()) v_.error(r, c2, "values must list at least one radius");
+      if (s.weights.size() != s.values.size())
+        v_.error(r["weights"] ? r["weights"] : r, c2, "weights must have as many entries as values");
+      for (double x : s.values)
+        if (!(x > 0)) v_.error(r["values"], c2, "every radius in values must be > 0");
+      for (double w : s.weights)
+        if (!(w >= 0)) v_.error(r["weights"], c2, "weights must be >= 0");
+    }
+  }
+
+  void parse_placement(const YAML::Node& n, sim::ParticleSetConfig& p, const std::string& ctx0) {
+    const auto ctx = ctx0 + ".placement";
+    if (!n.IsMap()) {
+      v_.error(n, ctx, "expected a map with a type (random_fill, lattice or file)");
+      return;
+    }
+    const YAML::Node t = n["type"];
+    static const std::vector<std::string> kinds{"random_fill", "lattice", "file"};
+    if (!t || !t.IsScalar() || std::find(kinds.begin(), kinds.end(), t.Scalar()) == kinds.end()) {
+      const std::string got = t && t.IsScalar() ? t.Scalar() : "";
+      const std::string guess = closest(got, kinds);
+      v_.error(t ? t : n, ctx,
+               (t ? "placement type '" + got + "' is not valid" : std::string("missing required key 'type'")) +
+                   (guess.empty() ? "" : "; did you mean '" + guess + "'?") + " valid: random_fill, lattice, file");
+      return;
+    }
+    const auto& d = doc("placement." + t.Scalar());
+    if (!v_.check_map(n, d, ctx)) return;
+    auto& pl = p.placement;
+    pl.seed = static_cast<std::uint64_t>(v_.integer(n, d, "seed", ctx, 1));
+    if (t.Scalar() == "random_fill") {
+      pl.kind = sim::Placement::Kind::RandomFill;
+      if (n["region"]) pl.region = region(n["region"], ctx + ".region");
+    } else if (t.Scalar() == "lattice") {
+      pl.kind = sim::Placement::Kind::Lattice;
+      if (n["region"]) pl.region = region(n["region"], ctx + ".region");
+      pl.spacing = v_.number(n, d, "spacing", ctx, 0);
+    } else {
+      pl.kind = sim::Placement::Kind::File;
+      const std::string path = v_.string(n, d, "path", ctx);
+      if (!path.empty()) read_positions(n["path"], path, pl, ctx);
+    }
+  }
+
+  void read_positions(const YAML::Node& at, const std::string& rel, sim::Placement& pl, const std::string& ctx) {
+    namespace fs = std::filesystem;
+    const fs::path path = fs::path(rel).is_absolute() ? fs::path(rel) : fs::path(c_.base_dir) / rel;
+    std::ifstream in(path);
+    if (!in) {
+      v_.error(at, ctx, "cannot open positions file '" + path.string() + "'");
+      return;
+    }
+    std::string line;
+    int lineno = 0;
+    int columns = -1;
+    while (std::getline(in, line)) {
+      ++lineno;
+      const auto hash = line.find('#');
+      if (hash != std::string::npos) line.resize(hash);
+      std::replace(line.begin(), line.end(), ',', ' ');
+      std::istringstream ls(line);
+      std::vector<double> vals;
+      std::string tok;
+      bool bad = false;
+      while (ls >> tok) {
+        char* end = nullptr;
+        const double x = std::strtod(tok.c_str(), &end);
+        if (end != tok.c_str() + tok.size() || !std::isfinite(x)) bad = true;
+        vals.push_back(x);
+      }
+      if (vals.empty() && !bad) continue;
+      const std::string where = path.string() + ":" + std::to_string(lineno);
+      if (bad || (vals.size() != 3 && vals.size() != 4)) {
+        v_.error_at(where, "expected 'x y z' or 'x y z r' with finite numbers, got '" + line + "'");
+        continue;
+      }
+      if (columns < 0) columns = static_cast<int>(vals.size());
+      if (static_cast<int>(vals.size()) != columns) {
+        v_.error_at(where, "every line must have the same number of columns (" + std::to_string(columns) + ")");
+        continue;
+      }
+      if (vals.size() == 4 && !(vals[3] > 0)) {
+        v_.error_at(where, "radius must be > 0");
+        continue;
+      }
+      pl.positions.emplace_back(vals[0], vals[1], vals[2]);
+      if (vals.size() == 4) pl.radii.push_back(vals[3]);
+      pl.position_where.push_back(where);
+    }
+    if (pl.positions.empty()) v_.error(at, ctx, "positions file '" + path.string() + "' holds no positions");
+  }
+
+  void parse_particles(const YAML::Node& n) {
+    if (!n) return;
+    if (!n.IsSequence() || n.size() == 0) {
+      v_.error(n, "particles", "expected a non-empty list of particle sets");
+      return;
+    }
+    const auto& d = doc("particles");
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      const auto ctx = idx("particles", i);
+      const YAML::Node s = n[i];
+      if (!v_.check_map(s, d, ctx)) continue;
+      sim::ParticleSetConfig p;
+      p.where = v_.where(s);
+      p.name = v_.string(s, d, "name", ctx, "set" + std::to_string(i));
+      p.material = material(s, d, ctx);
+      parse_radius(s, p, ctx);
+      p.count = v_.integer(s, d, "count", ctx, 0);
+      p.velocity = v_.vec3(s, d, "velocity", ctx);
+      if (s["placement"]) parse_placement(s["placement"], p, ctx);
+      if (p.placement.kind == sim::Placement::Kind::RandomFill && s["placement"] && !s["count"])
+        v_.error(s, ctx, "random_fill needs 'count' (the number of particles to place)");
+      c_.scene.sets.push_back(std::move(p));
+    }
+  }
+
+  void parse_walls(const YAML::Node& n) {
+    if (!n) return;
+    if (!n.IsSequence()) {
+      v_.error(n, "walls", "expected a list of walls");
+      return;
+    }
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      const auto ctx = idx("walls", i);
+      const YAML::Node w = n[i];
+      const YAML::Node t = w.IsMap() ? w["type"] : YAML::Node();
+      if (!t || !t.IsScalar() || (t.Scalar() != "plane" && t.Scalar() != "cylinder")) {
+        const std::string got = t && t.IsScalar() ? t.Scalar() : "";
+        const std::string guess = closest(got, {"plane", "cylinder"});
+        v_.error(t ? t : w, ctx,
+                 (t ? "wall type '" + got + "' is not valid" : std::string("missing required key 'type'")) +
+                     (guess.empty() ? "" : "; did you mean '" + guess + "'?") + " valid: plane, cylinder");
+        continue;
+      }
+      const auto& d = doc("walls." + t.Scalar());
+      if (!v_.check_map(w, d, ctx)) continue;
+      const std::string name = v_.string(w, d, "name", ctx, t.Scalar() + std::to_string(i));
+      const int mat = material(w, d, ctx);
+      const Vec3 vel = v_.vec3(w, d, "velocity", ctx);
+      if (t.Scalar() == "plane") {
+        sim::PlaneWall p;
+        p.name = name;
+        p.material = mat;
+        p.velocity = vel;
+        p.point = v_.vec3(w, d, "point", ctx);
+        p.normal = v_.vec3(w, d, "normal", ctx, Vec3(0, 0, 1));
+        if (p.normal.norm() == 0) {
+          v_.error(w["normal"], ctx, "normal must not be the zero vector");
+          p.normal = Vec3(0, 0, 1);
+        }
+        p.normal.normalize();
+        c_.scene.walls.planes.push_back(p);
+      } else {
+        sim::CylinderWall c;
+        c.name = name;
+        c.material = mat;
+        c.velocity = vel;
+        c.surface.base = v_.vec3(w, d, "base", ctx);
+        c.surface.axis = v_.vec3(w, d, "axis", ctx, Vec3(0, 0, 1));
+        if (c.surface.axis.norm() == 0) {
+          v_.error(w["axis"], ctx, "axis must not be the zero vector");
+          c.surface.axis = Vec3(0, 0, 1);
+        }
+        c.surface.axis.normalize();
+        c.surface.radius = v_.number(w, d, "radius", ctx, 1);
+        c.surface.t_min = 0;
+        c.surface.t_max = v_.number(w, d, "height", ctx, 1);
+        c.surface.inside = v_.boolean(w, d, "inside", ctx, true);
+        c_.scene.walls.cylinders.push_back(c);
+      }
+    }
+  }
+
+  void parse_time(const YAML::Node& n) {
+    if (!n) return;
+    const auto& d = doc("time");
+    if (!v_.check_map(n, d, "time")) return;
+    auto& sc = c_.scene;
+    sc.end_time = v_.number(n, d, "end", "time", 1);
+    (void)v_.string(n, d, "integrator", "time", "verlet");
+    if (n["dt"] && n["dt_rayleigh"]) {
+      v_.error(n["dt_rayleigh"], "time", "give either dt or dt_rayleigh, not both");
+    } else if (!n["dt"] && !n["dt_rayleigh"]) {
+      v_.error(n, "time", "missing the time step: give dt (seconds) or dt_rayleigh (fraction of the Rayleigh time, e.g. 0.2)");
+    }
+    sc.dt = v_.number(n, d, "dt", "time", 0);
+    sc.dt_rayleigh = v_.number(n, d, "dt_rayleigh", "time", 0);
+    sc.dt_where = v_.where(n["dt"] ? n["dt"] : n["dt_rayleigh"] ? n["dt_rayleigh"] : n);
+  }
+
+  void parse_neighbor(const YAML::Node& n) {
+    if (!n) return;
+    const auto& d = doc("neighbor");
+    if (!v_.check_map(n, d, "neighbor")) return;
+    c_.scene.skin = v_.number(n, d, "skin", "neighbor", 0.1);
+    c_.scene.sort_particles = v_.boolean(n, d, "sort", "neighbor", true);
+    c_.scene.overlap_tolerance = v_.number(n, d, "overlap_tolerance", "neighbor", 0.01);
+  }
+
+  void parse_output(const YAML::Node& n) {
+    if (!n) return;
+    const auto& d = doc("output");
+    if (!v_.check_map(n, d, "output")) return;
+    auto& o = c_.output;
+    if (n["every"] && n["every_steps"]) v_.error(n["every_steps"], "output", "give either every or every_steps, not both");
+    o.every = v_.number(n, d, "every", "output", 0);
+    o.every_steps = v_.integer(n, d, "every_steps", "output", 0);
+    o.vtk = v_.boolean(n, d, "vtk", "output", true);
+    o.progress = v_.boolean(n, d, "progress", "output", true);
+    o.progress_interval = v_.number(n, d, "progress_interval", "output", 2.0);
+  }
+
+  Case& c_;
+  Validator& v_;
+  std::map<std::string, int> material_index_;
+};
+
+// Applies "a.b.0.c=value" to the tree; records where the value came from.
+void apply_override(YAML::Node& root, const std::string& text, Validator& v) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    v.error_at("--set " + text, "expected key.path=value, e.g. --set time.end=0.5");
+    return;
+  }
+  const std::string path = text.substr(0, eq);
+  YAML::Node value;
+  try {
+    value = YAML::Load(text.substr(eq + 1));
+  } catch (const YAML::Exception& e) {
+    v.error_at("--set " + text, std::string("the value is not valid YAML: ") + e.msg);
+    return;
+  }
+  std::vector<std::string> parts;
+  std::stringstream ss(path);
+  for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
+  YAML::Node cur = root;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const std::string& p = parts[i];
+    const bool last = i + 1 == parts.size();
+    if (cur.IsSequence()) {
+      char* end = nullptr;
+      const long k = std::strtol(p.c_str(), &end, 10);
+      if (end != p.c_str() + p.size() || k < 0 || static_cast<std::size_t>(k) >= cur.size()) {
+        v.error_at("--set " + text, "'" + p + "' is not an index of the list (it has " + std::to_string(cur.size()) +
+                                        " entries, 0.." + std::to_string(cur.size() ? cur.size() - 1 : 0) + ")");
+        return;
+      }
+      if (last) {
+        cur[k] = value;
+        v.mark_override(cur[k], text);
+        return;
+      }
+      cur.reset(cur[k]);
+    } else {
+      if (!cur.IsMap() && !cur.IsNull()) {
+        v.error_at("--set " + text, "cannot descend into '" + p + "': the parent is not a map");
+        return;
+      }
+      if (last) {
+        cur[p] = value;
+        YAML::Node set = cur[p];
+        v.mark_override(set, text);
+        return;
+      }
+      YAML::Node next = cur[p];
+      cur.reset(next);
+    }
+  }
+}
+
+}  // namespace
+
+Case parse_case(const std::string& text, const std::string& name, const std::vector<std::string>& overrides,
+                const std::string& base_dir) {
+  register_io_docs();
+  Case c;
+  c.path = name;
+  c.base_dir = base_dir;
+  c.text = text;
+  Validator v(name);
+  try {
+    c.root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw CaseError({name + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
+                     ": YAML syntax error: " + e.msg});
+  }
+  if (c.root.IsNull()) throw CaseError({name + ": the case file is empty; see `grains docs case` for the keys"});
+  for (const auto& o : overrides) apply_override(c.root, o, v);
+  v.throw_if_errors();
+  CaseParser(c, v).parse();
+  v.throw_if_errors();
+  return c;
+}
+
+Case load_case(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CaseError({path + ": cannot open the case file"});
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const auto dir = std::filesystem::path(path).parent_path();
+  return parse_case(ss.str(), path, overrides, dir.empty() ? "." : dir.string());
+}
+
+}  // namespace grains::io

@@ -1,0 +1,41 @@
+#pragma once
+// A case file: YAML in, a validated sim::SceneConfig and output settings out.
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "io/case/validator.hpp"
+#include "sim/scene/scene_config.hpp"
+
+namespace grains::io {
+
+struct OutputConfig {
+  double every = 0;            // simulated seconds between frames (0: use every_steps)
+  std::int64_t every_steps = 0;  // steps between frames (0 and every = 0: first and last only)
+  bool vtk = true;
+  bool progress = true;
+  double progress_interval = 2.0;  // wall-clock seconds between progress lines
+};
+
+struct Case {
+  std::string path;      // the case file (or a name for in-memory text)
+  std::string base_dir;  // folder relative paths are resolved against
+  std::string text;      // the case file as read (kept for checkpoints)
+  YAML::Node root;       // after --set overrides
+  sim::SceneConfig scene;
+  OutputConfig output;
+};
+
+/// Reads and validates a case file; `overrides` are "key.path=value" strings
+/// (list entries by index: materials.0.friction=0.3). Throws CaseError with
+/// every problem found, each as file:line:column: what is wrong, what is valid.
+Case load_case(const std::string& path, const std::vector<std::string>& overrides = {});
+/// The same from text in memory; `name` stands for the file in messages.
+Case parse_case(const std::string& text, const std::string& name, const std::vector<std::string>& overrides = {},
+                const std::string& base_dir = ".");
+
+/// Registers the io sections (output) with the effect documentation.
+void register_io_docs();
+
+}  // namespace grains::io

@@ -1,0 +1,77 @@
+#include "io/output/progress.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace grains::io {
+
+Progress::Progress(std::ostream& out, double interval) : out_(out), interval_(interval) {}
+
+void Progress::run(sim::Scene& s) {
+  const auto now = std::chrono::steady_clock::now();
+  if (start_step_ < 0) {
+    start_ = last_ = now;
+    start_step_ = s.clock.step - 1;
+  }
+  particle_steps_ += static_cast<double>(s.particles.n_owned());
+  if (std::chrono::duration<double>(now - last_).count() >= interval_) {
+    last_ = now;
+    print(s, false);
+  }
+}
+
+void Progress::finish(sim::Scene& s) {
+  if (start_step_ >= 0) print(s, true);
+}
+
+void Progress::print(const sim::Scene& s, bool final) {
+  const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const auto done = s.clock.step - start_step_;
+  const auto left = s.clock.n_steps - s.clock.step;
+  const double eta = done > 0 ? el / static_cast<double>(done) * static_cast<double>(left) : 0;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%sstep %lld/%lld (%5.1f%%)  t = %.6g s  %s %.0f s  %zu particles  %.3g particle-steps/s",
+                final ? "done: " : "", static_cast<long long>(s.clock.step), static_cast<long long>(s.clock.n_steps),
+                s.clock.n_steps > 0 ? 100.0 * static_cast<double>(s.clock.step) / static_cast<double>(s.clock.n_steps) : 100.0,
+                s.clock.time, final ? "wall" : "ETA", final ? el : eta, s.particles.n_owned(),
+                el > 0 ? particle_steps_ / el : 0.0);
+  out_ << buf << std::endl;
+}
+
+BlowUpCheck::BlowUpCheck(const sim::Scene& s, double rayleigh_time, std::int64_t every)
+    : rayleigh_(rayleigh_time), every_(every) {
+  const sim::Vec3 ext = s.domain.hi - s.domain.lo;
+  double v0 = 0;
+  for (std::size_t i = 0; i < s.particles.n_owned(); ++i) v0 = std::max(v0, s.particles.v[i].norm());
+  const double vfall = std::sqrt(2 * s.gravity.norm() * ext.norm());
+  vmax_ = 100 * (v0 + vfall + s.walls.max_displacement(1.0)) + 1e-6;
+}
+
+void BlowUpCheck::run(sim::Scene& s) {
+  if (s.clock.step % every_ != 0) return;
+  const auto& p = s.particles;
+  for (std::size_t i = 0; i < p.n_owned(); ++i) {
+    const bool finite = p.x[i].allFinite() && p.v[i].allFinite();
+    const double speed = finite ? p.v[i].norm() : 0;
+    if (finite && speed <= vmax_) continue;
+    std::ostringstream o;
+    o.precision(4);
+    o << "blow-up at step " << s.clock.step << " (t = " << s.clock.time << " s): particle id " << p.id[i]
+      << " (radius " << p.radius[i] << " m) has ";
+    if (!finite)
+      o << "a non-finite position or velocity";
+    else
+      o << "speed " << speed << " m/s, above the plausible bound " << vmax_ << " m/s";
+    o << ". Likely cause: ";
+    const double frac = s.clock.dt / rayleigh_;
+    if (frac > 0.3)
+      o << "the time step dt = " << s.clock.dt << " s is " << frac << " Rayleigh times; use time.dt_rayleigh: 0.2";
+    else
+      o << "overlapping initial positions, a wall placed through particles, or extreme material values "
+           "(check youngs_modulus and density)";
+    throw BlowUp(o.str());
+  }
+}
+
+}  // namespace grains::io

@@ -1,0 +1,212 @@
+#include "io/output/vtk_output.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkIntArray.h>
+#include <vtkLongLongArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLPolyDataWriter.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include "contact/sphere.hpp"
+
+namespace grains::io {
+
+namespace fs = std::filesystem;
+using sim::Vec3;
+
+std::vector<int> coordination_numbers(const sim::Scene& s) {
+  const auto& p = s.particles;
+  const auto& nl = s.neighbors;
+  std::vector<int> z(p.n_owned(), 0);
+  const std::size_t rows = nl.row_start.empty() ? 0 : nl.row_start.size() - 1;
+  for (std::size_t i = 0; i < rows && i < p.n_owned(); ++i)
+    for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
+      const auto j = nl.partner[k];
+      const double rs = p.radius[i] + p.radius[j];
+      if ((p.x[i] - p.x[j]).squaredNorm() < rs * rs) {
+        ++z[i];
+        if (j < z.size()) ++z[j];
+      }
+    }
+  return z;
+}
+
+VtkOutput::VtkOutput(fs::path dir, std::int64_t every_steps) : dir_(std::move(dir)), every_(every_steps) {}
+
+std::string VtkOutput::name() const {
+  return "output.vtk(" + (every_ > 0 ? "every " + std::to_string(every_) + " steps" : std::string("first+last")) + ")";
+}
+
+void VtkOutput::run(sim::Scene& s) {
+  if (every_ > 0 && s.clock.step % every_ == 0) write_frame(s);
+}
+
+void VtkOutput::finish(sim::Scene& s) {
+  if (last_step_ != s.clock.step) write_frame(s);
+}
+
+void VtkOutput::write_frame(const sim::Scene& s) {
+  if (times_.empty()) {
+    std::error_code ec;
+    fs::create_directories(dir_ / "frames", ec);
+    if (ec) throw std::runtime_error("cannot create output folder '" + (dir_ / "frames").string() + "': " + ec.message());
+  }
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%06zu", times_.size());
+  write_particles(s, dir_ / "frames" / (std::string("particles_") + buf + ".vtu"));
+  if (s.walls.count() > 0) write_walls(s, dir_ / "frames" / (std::string("walls_") + buf + ".vtp"));
+  times_.push_back(s.clock.time);
+  steps_.push_back(s.clock.step);
+  last_step_ = s.clock.step;
+  write_pvd("particles.pvd", "particles_", ".vtu");
+  if (s.walls.count() > 0) write_pvd("walls.pvd", "walls_", ".vtp");
+}
+
+namespace {
+
+vtkNew<vtkDoubleArray> vec_array(const char* name, const std::vector<Vec3>& v, std::size_t n) {
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(3);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  for (std::size_t i = 0; i < n; ++i) a->SetTuple(static_cast<vtkIdType>(i), v[i].data());
+  return a;
+}
+
+template <class W>
+void write_or_throw(W* w, const fs::path& file) {
+  const fs::path tmp = file.string() + ".tmp";
+  w->SetFileName(tmp.c_str());
+  w->SetDataModeToAppended();
+  w->SetCompressorTypeToZLib();
+  if (w->Write() != 1) throw std::runtime_error("could not write '" + file.string() + "' (disk full or not writable?)");
+  std::error_code ec;
+  fs::rename(tmp, file, ec);
+  if (ec) throw std::runtime_error("could not write '" + file.string() + "': " + ec.message());
+}
+
+}  // namespace
+
+void VtkOutput::write_particles(const sim::Scene& s, const fs::path& file) const {
+  const auto& p = s.particles;
+  const std::size_t n = p.n_owned();
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(static_cast<vtkIdType>(n));
+  for (std::size_t i = 0; i < n; ++i) pts->SetPoint(static_cast<vtkIdType>(i), p.x[i].data());
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(pts);
+  grid->Allocate(static_cast<vtkIdType>(n));
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(n); ++i) grid->InsertNextCell(VTK_VERTEX, 1, &i);
+  auto* pd = grid->GetPointData();
+  vtkNew<vtkLongLongArray> id;
+  id->SetName("id");
+  vtkNew<vtkDoubleArray> radius;
+  radius->SetName("radius");
+  vtkNew<vtkIntArray> mat, coord;
+  mat->SetName("material");
+  coord->SetName("coordination");
+  const auto z = coordination_numbers(s);
+  for (std::size_t i = 0; i < n; ++i) {
+    id->InsertNextValue(p.id[i]);
+    radius->InsertNextValue(p.radius[i]);
+    mat->InsertNextValue(p.material[i]);
+    coord->InsertNextValue(z[i]);
+  }
+  pd->AddArray(id);
+  pd->AddArray(radius);
+  pd->AddArray(mat);
+  pd->AddArray(coord);
+  pd->AddArray(vec_array("velocity", p.v, n));
+  pd->AddArray(vec_array("force", p.f, n));
+  if (p.fields().has(sim::Field::AngularVelocity)) pd->AddArray(vec_array("angular_velocity", p.omega, n));
+  pd->SetActiveScalars("radius");
+  vtkNew<vtkXMLUnstructuredGridWriter> w;
+  w->SetInputData(grid);
+  write_or_throw(w.Get(), file);
+}
+
+void VtkOutput::write_walls(const sim::Scene& s, const fs::path& file) const {
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkIntArray> wall_id;
+  wall_id->SetName("wall");
+  int w = 0;
+  const Vec3 c = 0.5 * (s.domain.lo + s.domain.hi);
+  const double half = 0.5 * (s.domain.hi - s.domain.lo).norm();
+  for (const auto& pl : s.walls.planes) {
+    // A square on the plane, centred at the projection of the domain centre,
+    // as wide as the domain's diagonal.
+    const Vec3 o = c - pl.normal * pl.normal.dot(c - pl.point);
+    const Vec3 a = pl.normal.unitOrthogonal();
+    const Vec3 b = pl.normal.cross(a);
+    vtkIdType ids[4];
+    const double sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
+    for (int k = 0; k < 4; ++k) ids[k] = pts->InsertNextPoint(Vec3(o + half * (sx[k] * a + sy[k] * b)).data());
+    polys->InsertNextCell(4, ids);
+    wall_id->InsertNextValue(w++);
+  }
+  for (const auto& cy : s.walls.cylinders) {
+    const auto& sf = cy.surface;
+    const Vec3 a = sf.axis.unitOrthogonal();
+    const Vec3 b = sf.axis.cross(a);
+    const int seg = 64;
+    const vtkIdType first = pts->GetNumberOfPoints();
+    for (int k = 0; k < seg; ++k) {
+      const double t = 2 * M_PI * k / seg;
+      const Vec3 r = sf.radius * (std::cos(t) * a + std::sin(t) * b);
+      pts->InsertNextPoint(Vec3(sf.base + sf.axis * sf.t_min + r).data());
+      pts->InsertNextPoint(Vec3(sf.base + sf.axis * sf.t_max + r).data());
+    }
+    for (int k = 0; k < seg; ++k) {
+      const vtkIdType k2 = (k + 1) % seg;
+      vtkIdType q[4] = {first + 2 * k, first + 2 * k2, first + 2 * k2 + 1, first + 2 * k + 1};
+      polys->InsertNextCell(4, q);
+      wall_id->InsertNextValue(w);
+    }
+    ++w;
+  }
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(pts);
+  poly->SetPolys(polys);
+  poly->GetCellData()->AddArray(wall_id);
+  vtkNew<vtkXMLPolyDataWriter> wr;
+  wr->SetInputData(poly);
+  write_or_throw(wr.Get(), file);
+}
+
+void VtkOutput::write_pvd(const std::string& name, const std::string& prefix, const std::string& ext) const {
+  const fs::path file = dir_ / name;
+  const fs::path tmp = file.string() + ".tmp";
+  {
+    std::ofstream o(tmp);
+    o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+         "  <Collection>\n";
+    o.precision(12);
+    for (std::size_t k = 0; k < times_.size(); ++k) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%06zu", k);
+      o << "    <DataSet timestep=\"" << times_[k] << "\" group=\"\" part=\"0\" file=\"frames/" << prefix << buf << ext
+        << "\"/>\n";
+    }
+    o << "  </Collection>\n</VTKFile>\n";
+    o.flush();
+    if (!o) throw std::runtime_error("could not write '" + file.string() + "' (disk full or not writable?)");
+  }
+  std::error_code ec;
+  fs::rename(tmp, file, ec);
+  if (ec) throw std::runtime_error("could not write '" + file.string() + "': " + ec.message());
+}
+
+}  // namespace grains::io
