@@ -1,0 +1,156 @@
+#include "contact/correlation/ball_spectrum.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <stdexcept>
+
+#include "contact/correlation/ball_kernels.hpp"
+#include "contact/correlation/fftw_util.hpp"
+#include "contact/correlation/nufft3d.hpp"
+#include "contact/correlation/spreader.hpp"
+
+namespace grains::correlation {
+
+HalfSpectrum::HalfSpectrum(std::array<int, 3> max_mode) : k_(max_mode) {
+  for (int d = 0; d < 3; ++d)
+    if (k_[d] < 0) throw std::invalid_argument("HalfSpectrum: negative maximum mode");
+  data_.assign(static_cast<std::size_t>(k_[0] + 1) * (2 * k_[1] + 1) * (2 * k_[2] + 1),
+               Complex(0.0, 0.0));
+}
+
+namespace {
+
+inline int pmod(int a, int n) { return ((a % n) + n) % n; }
+
+}  // namespace
+
+HalfSpectrum ball_spectrum(const BallSet& balls, const PeriodicBox& box,
+                           std::array<int, 3> max_mode, const SpectrumOptions& opt,
+                           int* classes) {
+  balls.validate("ball_spectrum");
+  for (int d = 0; d < 3; ++d)
+    if (!(box.period[d] > 0.0)) throw std::invalid_argument("ball_spectrum: period must be > 0");
+  HalfSpectrum out(max_mode);
+  const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
+  const KernelSpec kernel = choose_kernel(std::clamp(opt.tolerance, 1e-14, 1e-1), opt.upsampling);
+  std::array<int, 3> fine;
+  for (int d = 0; d < 3; ++d) fine[d] = fine_grid_size(2 * max_mode[d] + 1, kernel.sigma, kernel.width);
+
+  // Radius classes: indices sorted by radius, grouped while within tolerance.
+  const std::size_t n = balls.size();
+  std::vector<std::size_t> idx(n);
+  std::iota(idx.begin(), idx.end(), std::size_t{0});
+  std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) {
+    return balls.radii[a] < balls.radii[b];
+  });
+  std::vector<std::size_t> cls_begin;
+  for (std::size_t s = 0; s < n; ++s)
+    if (s == 0 || balls.radii[idx[s]] > balls.radii[idx[cls_begin.back()]] * (1.0 + opt.radius_class_tol))
+      cls_begin.push_back(s);
+  cls_begin.push_back(n);
+  const int ncls = static_cast<int>(cls_begin.size()) - 1;
+  if (classes) *classes = ncls;
+  if (ncls == 0) return out;
+
+  Spreader spreader(fine, kernel, threads, 10000);
+  const std::size_t nreal = static_cast<std::size_t>(fine[0]) * fine[1] * fine[2];
+  const int h0 = fine[0] / 2 + 1;
+  FftwBuffer grid(nreal);
+  FftwBuffer spec(2 * static_cast<std::size_t>(h0) * fine[1] * fine[2]);
+  FftwPlan plan = plan_r2c_3d(fine, grid.data(), spec.as_complex(), threads, FFTW_ESTIMATE);
+
+  // 1 / psi_hat per axis for |m| <= K, and the wavenumbers.
+  std::array<std::vector<double>, 3> deconv, kw;
+  for (int d = 0; d < 3; ++d) {
+    deconv[d] = kernel_fourier_series(kernel, fine[d], max_mode[d]);
+    for (double& v : deconv[d]) v = 1.0 / v;
+    kw[d].resize(max_mode[d] + 1);
+    for (int m = 0; m <= max_mode[d]; ++m) kw[d][m] = 2.0 * std::numbers::pi * m / box.period[d];
+  }
+
+  const std::array<int, 3> K = max_mode;
+  const std::complex<double>* s = reinterpret_cast<const std::complex<double>*>(spec.data());
+  std::vector<double> x, y, z, w;
+  for (int c = 0; c < ncls; ++c) {
+    const std::size_t b = cls_begin[c], e = cls_begin[c + 1];
+    const double r = balls.radii[idx[b]];
+    x.clear(); y.clear(); z.clear(); w.clear();
+    for (std::size_t q = b; q < e; ++q) {
+      const std::size_t i = idx[q];
+      x.push_back(2.0 * std::numbers::pi * (balls.centres[3 * i] - box.origin[0]) / box.period[0]);
+      y.push_back(2.0 * std::numbers::pi * (balls.centres[3 * i + 1] - box.origin[1]) / box.period[1]);
+      z.push_back(2.0 * std::numbers::pi * (balls.centres[3 * i + 2] - box.origin[2]) / box.period[2]);
+      w.push_back(balls.weight(i));
+    }
+    spreader.set_points(x, y, z);
+    grid.zero();
+    spreader.spread(w.data(), 1, grid.data());
+    plan.execute();
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (int m2 = -K[2]; m2 <= K[2]; ++m2) {
+      const int g2 = pmod(m2, fine[2]);
+      for (int m1 = -K[1]; m1 <= K[1]; ++m1) {
+        const int g1 = pmod(m1, fine[1]);
+        const double d12 = deconv[2][std::abs(m2)] * deconv[1][std::abs(m1)];
+        const double k12 = kw[2][std::abs(m2)] * kw[2][std::abs(m2)] +
+                           kw[1][std::abs(m1)] * kw[1][std::abs(m1)];
+        const std::complex<double>* row = s + (static_cast<std::size_t>(g2) * fine[1] + g1) * h0;
+        std::complex<double>* o = &out(0, m1, m2);
+        for (int m0 = 0; m0 <= K[0]; ++m0) {
+          const double k = std::sqrt(k12 + kw[0][m0] * kw[0][m0]);
+          o[m0] += row[m0] * (d12 * deconv[0][m0] * ball_indicator_transform(k, r));
+        }
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<double> synthesize_on_grid(const HalfSpectrum& h, std::array<int, 3> T, int threads) {
+  for (int d = 0; d < 3; ++d)
+    if (T[d] < 1) throw std::invalid_argument("synthesize_on_grid: need >= 1 node per axis");
+  threads = threads > 0 ? threads : omp_get_max_threads();
+  const std::array<int, 3> K = h.max_mode();
+  const int t0 = T[0] / 2 + 1;
+  FftwBuffer g(2 * static_cast<std::size_t>(t0) * T[1] * T[2]);
+  FftwBuffer out(static_cast<std::size_t>(T[0]) * T[1] * T[2]);
+  std::complex<double>* G = reinterpret_cast<std::complex<double>*>(g.data());
+  // Fold every mode of the box |m_d| <= K_d onto the grid's half spectrum.
+  // Parallel over target planes (m2 mod T2) so that no two threads add to the
+  // same entry.
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int r2 = 0; r2 < T[2]; ++r2) {
+    for (int m2 = -K[2]; m2 <= K[2]; ++m2) {
+      if (pmod(m2, T[2]) != r2) continue;
+      for (int m1 = -K[1]; m1 <= K[1]; ++m1) {
+        std::complex<double>* row = G + (static_cast<std::size_t>(r2) * T[1] + pmod(m1, T[1])) * t0;
+        for (int m0 = -K[0]; m0 <= K[0]; ++m0) {
+          const int r0 = pmod(m0, T[0]);
+          if (r0 >= t0) continue;
+          row[r0] += h.at(m0, m1, m2);
+        }
+      }
+    }
+  }
+  FftwPlan plan = plan_c2r_3d(T, g.as_complex(), out.data(), threads, FFTW_ESTIMATE);
+  plan.execute();
+  return std::vector<double>(out.data(), out.data() + out.size());
+}
+
+std::vector<double> crop_nodes(const std::vector<double>& full, std::array<int, 3> T,
+                               std::array<int, 3> dims) {
+  if (T == dims) return full;
+  std::vector<double> out(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]);
+  for (int i2 = 0; i2 < dims[2]; ++i2)
+    for (int i1 = 0; i1 < dims[1]; ++i1)
+      for (int i0 = 0; i0 < dims[0]; ++i0)
+        out[(static_cast<std::size_t>(i2) * dims[1] + i1) * dims[0] + i0] =
+            full[(static_cast<std::size_t>(i2) * T[1] + i1) * T[0] + i0];
+  return out;
+}
+
+}  // namespace grains::correlation

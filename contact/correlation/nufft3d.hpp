@@ -1,0 +1,83 @@
+#pragma once
+// 3D non-uniform FFT of type 1 and type 2 on FFTW3.
+//
+//   type 1 (adjoint NFFT, points -> modes):  f_k = sum_j c_j exp(s i k.x_j)
+//   type 2 (NFFT, modes -> points):          c_j = sum_k f_k exp(s i k.x_j)
+//
+// with s = +1 or -1, points x_j in radians on the 2pi-periodic torus (any real
+// value; a point on the period boundary 2pi is the same as 0), and the modes
+// k = (k1, k2, k3) with k_d = -floor(N_d/2) .. ceil(N_d/2) - 1, stored x
+// fastest: f[(i3 * N2 + i2) * N1 + i1] holds k_d = i_d - floor(N_d/2).
+// Type 2 with sign -s is the adjoint of type 1 with sign s.
+//
+// Method: spread with the ES kernel onto a fine grid of n_d >= sigma N_d
+// nodes (next 2,3,5-smooth even size), FFT of the fine grid, then divide by
+// the kernel's Fourier transform (deconvolution) and truncate to the N modes;
+// type 2 runs the same steps backwards. FFTW plans for both signs are made
+// once in the constructor and reused by every call.
+#include <array>
+#include <complex>
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "contact/correlation/es_kernel.hpp"
+#include "contact/correlation/fftw_util.hpp"
+#include "contact/correlation/spreader.hpp"
+
+namespace grains::correlation {
+
+struct NufftOptions {
+  // Fine-grid upsampling factor: 2 (default) or e.g. 1.25, which shrinks the
+  // FFT (4.1x fewer fine nodes) at the price of a wider kernel; 0 picks 1.25
+  // when the FFT is expected to dominate (few points per mode) and the
+  // tolerance allows it, else 2.
+  double upsampling = 2.0;
+  int threads = 0;                      // 0: omp_get_max_threads()
+  unsigned fftw_flags = FFTW_ESTIMATE;  // FFTW_MEASURE pays off for repeated calls
+  int max_subproblem = 10000;           // points per spreading subproblem
+  std::size_t expected_points = 0;      // only used by upsampling = 0
+};
+
+class Nufft3d {
+ public:
+  using Complex = std::complex<double>;
+
+  // modes: N_d >= 1 per dimension; eps in [1e-14, 1e-1].
+  Nufft3d(std::array<int, 3> modes, double eps, const NufftOptions& opt = {});
+
+  // Points in radians (2pi-periodic). Sorted once; reused by every transform
+  // until the next call. M = 0 is allowed (every transform returns zeros).
+  void set_points(std::span<const double> x, std::span<const double> y,
+                  std::span<const double> z);
+
+  // f (N1 N2 N3 modes) = type 1 of c (M strengths).
+  void type1(std::span<const Complex> c, std::span<Complex> f, int sign);
+  // c (M values) = type 2 of f (N1 N2 N3 modes).
+  void type2(std::span<const Complex> f, std::span<Complex> c, int sign);
+
+  std::array<int, 3> modes() const { return modes_; }
+  std::array<int, 3> fine() const { return fine_; }
+  std::size_t num_modes() const {
+    return static_cast<std::size_t>(modes_[0]) * modes_[1] * modes_[2];
+  }
+  std::size_t num_points() const { return spreader_.num_points(); }
+  const KernelSpec& kernel() const { return kernel_; }
+
+  // Steps timed separately by the benchmarks (the FFT of the fine grid alone).
+  void execute_fine_fft(int sign);
+
+ private:
+  std::array<int, 3> modes_;
+  KernelSpec kernel_;
+  std::array<int, 3> fine_;
+  Spreader spreader_;
+  FftwBuffer grid_;
+  FftwPlan plan_minus_, plan_plus_;
+  std::array<std::vector<double>, 3> deconv_;  // 1 / psi_hat(k), index i_d
+};
+
+// Fine-grid size for N modes with upsampling sigma and kernel width w.
+int fine_grid_size(int n_modes, double sigma, int width);
+
+}  // namespace grains::correlation

@@ -1,0 +1,60 @@
+#pragma once
+// Spreading (non-uniform points -> fine grid) and interpolation (fine grid ->
+// points) with the ES kernel: the two non-FFT halves of the NUFFT.
+//
+// Points are given in radians on the 2pi-periodic torus (any real value is
+// folded), converted to fine-grid coordinates u in [0, n) and sorted into bins
+// of 16 x 4 x 4 fine cells (x fastest) so that consecutive points touch
+// neighbouring memory. Spreading splits the sorted points into subproblems of
+// at most `max_subproblem` points; each is spread into its own small subgrid
+// (bounding box + kernel width, no wrap-around inside) and then added into the
+// periodic fine grid, with atomic adds when more than one thread runs: no two
+// threads ever write the same location unprotected. Interpolation only reads
+// the grid and is parallel over points.
+//
+// Values are real (NC = 1) or complex interleaved (NC = 2).
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "contact/correlation/es_kernel.hpp"
+
+namespace grains::correlation {
+
+class Spreader {
+ public:
+  Spreader(std::array<int, 3> fine, const KernelSpec& kernel, int threads, int max_subproblem);
+
+  // Folds and sorts the M points (radians, 2pi-periodic). The arrays may be
+  // discarded after the call.
+  void set_points(std::span<const double> x, std::span<const double> y,
+                  std::span<const double> z);
+
+  // grid (fine, x fastest, nc doubles per cell) += spread of c (nc doubles per
+  // point, in the caller's point order). The grid is not cleared.
+  void spread(const double* c, int nc, double* grid) const;
+
+  // c[j] = sum over the kernel footprint of point j of psi * grid (complex).
+  void interpolate(const double* grid, double* c) const;
+
+  std::size_t num_points() const { return order_.size(); }
+  const std::array<int, 3>& fine() const { return fine_; }
+  const KernelPolynomial& kernel() const { return poly_; }
+  int threads() const { return threads_; }
+
+  // Exposed for tests: sorted fine-grid coordinates and the permutation.
+  const std::vector<std::int64_t>& order() const { return order_; }
+
+ private:
+  std::array<int, 3> fine_;
+  KernelPolynomial poly_;
+  int threads_;
+  int max_sub_;
+  std::vector<double> ux_, uy_, uz_;         // sorted fine-grid coordinates
+  std::vector<std::int64_t> order_;          // sorted position -> caller index
+  std::vector<std::size_t> sub_begin_;       // subproblem boundaries (size + 1)
+};
+
+}  // namespace grains::correlation

@@ -1,0 +1,206 @@
+// The 3D NUFFT against the direct sums (NDFT): accuracy for every tolerance,
+// adjointness, awkward point sets and mode counts.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "contact/correlation/nufft3d.hpp"
+#include "direct_sums.hpp"
+
+namespace gc = grains::correlation;
+using gc::testing::Complex;
+using gc::testing::rel_l2;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+struct Problem {
+  std::vector<double> x, y, z;
+  std::vector<Complex> c;
+};
+
+Problem random_problem(std::size_t m, unsigned seed, double lo = -kPi, double hi = kPi) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(lo, hi), v(-1.0, 1.0);
+  Problem p;
+  for (std::size_t j = 0; j < m; ++j) {
+    p.x.push_back(u(rng));
+    p.y.push_back(u(rng));
+    p.z.push_back(u(rng));
+    p.c.emplace_back(v(rng), v(rng));
+  }
+  return p;
+}
+
+std::vector<Complex> random_modes(std::array<int, 3> n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> v(-1.0, 1.0);
+  std::vector<Complex> f(static_cast<std::size_t>(n[0]) * n[1] * n[2]);
+  for (auto& a : f) a = Complex(v(rng), v(rng));
+  return f;
+}
+
+// Relative l2 errors of type 1 and type 2 against the direct sums.
+std::pair<double, double> errors(const Problem& p, std::array<int, 3> n, double eps,
+                                 double sigma, int sign, const std::vector<Complex>& ref1,
+                                 const std::vector<Complex>& f, const std::vector<Complex>& ref2,
+                                 int threads = 0, int max_sub = 10000) {
+  gc::NufftOptions opt;
+  opt.upsampling = sigma;
+  opt.threads = threads;
+  opt.max_subproblem = max_sub;
+  gc::Nufft3d plan(n, eps, opt);
+  plan.set_points(p.x, p.y, p.z);
+  std::vector<Complex> f1(plan.num_modes()), c2(p.x.size());
+  plan.type1(p.c, f1, sign);
+  plan.type2(f, c2, sign);
+  return {rel_l2(f1, ref1), rel_l2(c2, ref2)};
+}
+
+}  // namespace
+
+TEST(Nufft3d, MatchesDirectSumForEveryTolerance) {
+  const std::array<int, 3> n = {32, 28, 24};
+  const Problem p = random_problem(1000, 1);
+  const auto f = random_modes(n, 2);
+  for (int sign : {-1, +1}) {
+    const auto ref1 = gc::testing::direct_type1(p.x, p.y, p.z, p.c, n, sign);
+    const auto ref2 = gc::testing::direct_type2(p.x, p.y, p.z, f, n, sign);
+    for (int e = 2; e <= 12; ++e) {
+      const double eps = std::pow(10.0, -e);
+      const auto [e1, e2] = errors(p, n, eps, 2.0, sign, ref1, f, ref2);
+      EXPECT_LE(e1, eps) << "type 1, sign " << sign << ", eps " << eps;
+      EXPECT_LE(e2, eps) << "type 2, sign " << sign << ", eps " << eps;
+      // Not absurdly more accurate than asked either (the width follows eps).
+      if (e <= 10) {
+        EXPECT_GE(e1, 1e-4 * eps) << "type 1 eps " << eps;
+      }
+    }
+  }
+}
+
+TEST(Nufft3d, UpsamplingOnePointTwoFiveMeetsTolerance) {
+  const std::array<int, 3> n = {24, 20, 16};
+  const Problem p = random_problem(800, 3);
+  const auto f = random_modes(n, 4);
+  const auto ref1 = gc::testing::direct_type1(p.x, p.y, p.z, p.c, n, -1);
+  const auto ref2 = gc::testing::direct_type2(p.x, p.y, p.z, f, n, -1);
+  EXPECT_FALSE(gc::kernel_feasible(1e-9, 1.25));
+  for (int e = 2; e <= 8; ++e) {
+    const double eps = std::pow(10.0, -e);
+    ASSERT_TRUE(gc::kernel_feasible(eps, 1.25));
+    const auto [e1, e2] = errors(p, n, eps, 1.25, -1, ref1, f, ref2);
+    EXPECT_LE(e1, eps) << "type 1, eps " << eps;
+    EXPECT_LE(e2, eps) << "type 2, eps " << eps;
+  }
+}
+
+TEST(Nufft3d, Type2IsAdjointOfType1) {
+  const std::array<int, 3> n = {20, 17, 25};
+  const Problem p = random_problem(1000, 5);
+  const auto f = random_modes(n, 6);
+  for (double eps : {1e-3, 1e-9}) {
+    for (int sign : {-1, +1}) {
+      gc::Nufft3d plan(n, eps);
+      plan.set_points(p.x, p.y, p.z);
+      std::vector<Complex> f1(plan.num_modes()), c2(p.c.size());
+      plan.type1(p.c, f1, sign);
+      plan.type2(f, c2, -sign);
+      Complex lhs = 0.0, rhs = 0.0;  // <T1 c, f> and <c, T2 f>
+      for (std::size_t k = 0; k < f.size(); ++k) lhs += f1[k] * std::conj(f[k]);
+      for (std::size_t j = 0; j < p.c.size(); ++j) rhs += p.c[j] * std::conj(c2[j]);
+      EXPECT_LE(std::abs(lhs - rhs), 1e-13 * std::abs(lhs)) << eps << " " << sign;
+    }
+  }
+}
+
+TEST(Nufft3d, PointsOnThePeriodBoundary) {
+  const std::array<int, 3> n = {16, 18, 21};
+  Problem p;
+  const double edge[] = {-kPi, kPi, 0.0, 2 * kPi, -2 * kPi, 3 * kPi, std::nextafter(kPi, 0.0),
+                         std::nextafter(-kPi, 0.0), std::nextafter(2 * kPi, 10.0), 1e-300};
+  std::mt19937 rng(7);
+  for (double a : edge)
+    for (double b : edge) {
+      p.x.push_back(a);
+      p.y.push_back(b);
+      p.z.push_back(edge[rng() % 10]);
+      p.c.emplace_back(std::cos(a + b), std::sin(3 * a - b));
+    }
+  const auto f = random_modes(n, 8);
+  for (double eps : {1e-4, 1e-10}) {
+    const auto ref1 = gc::testing::direct_type1(p.x, p.y, p.z, p.c, n, +1);
+    const auto ref2 = gc::testing::direct_type2(p.x, p.y, p.z, f, n, +1);
+    const auto [e1, e2] = errors(p, n, eps, 2.0, +1, ref1, f, ref2);
+    EXPECT_LE(e1, eps);
+    EXPECT_LE(e2, eps);
+  }
+}
+
+TEST(Nufft3d, AllPointsInOneCellManySubproblems) {
+  const std::array<int, 3> n = {24, 24, 24};
+  // Fine cell is 2 pi / 48: keep every point inside one of them.
+  const Problem p = random_problem(1000, 9, 0.3, 0.3 + 0.1);
+  const auto f = random_modes(n, 10);
+  const auto ref1 = gc::testing::direct_type1(p.x, p.y, p.z, p.c, n, -1);
+  const auto ref2 = gc::testing::direct_type2(p.x, p.y, p.z, f, n, -1);
+  for (int threads : {1, 2}) {
+    for (int max_sub : {1, 37, 10000}) {
+      const auto [e1, e2] = errors(p, n, 1e-8, 2.0, -1, ref1, f, ref2, threads, max_sub);
+      EXPECT_LE(e1, 1e-8) << threads << " " << max_sub;
+      EXPECT_LE(e2, 1e-8) << threads << " " << max_sub;
+    }
+  }
+}
+
+TEST(Nufft3d, OddAndNonCubicModeCounts) {
+  const Problem p = random_problem(700, 11, -3 * kPi, 5 * kPi);
+  for (std::array<int, 3> n : {std::array<int, 3>{17, 23, 9}, std::array<int, 3>{1, 5, 31},
+                               std::array<int, 3>{32, 1, 2}, std::array<int, 3>{3, 3, 3}}) {
+    const auto f = random_modes(n, 12);
+    const auto ref1 = gc::testing::direct_type1(p.x, p.y, p.z, p.c, n, +1);
+    const auto ref2 = gc::testing::direct_type2(p.x, p.y, p.z, f, n, +1);
+    for (double sigma : {2.0, 1.25}) {
+      const auto [e1, e2] = errors(p, n, 1e-7, sigma, +1, ref1, f, ref2);
+      EXPECT_LE(e1, 1e-7) << n[0] << "x" << n[1] << "x" << n[2] << " sigma " << sigma;
+      EXPECT_LE(e2, 1e-7) << n[0] << "x" << n[1] << "x" << n[2] << " sigma " << sigma;
+    }
+  }
+}
+
+TEST(Nufft3d, NoPoints) {
+  gc::Nufft3d plan({8, 9, 10}, 1e-6);
+  const std::vector<double> none;
+  plan.set_points(none, none, none);
+  std::vector<Complex> f(plan.num_modes(), Complex(7.0, 7.0)), c;
+  plan.type1(c, f, -1);
+  for (const auto& a : f) EXPECT_EQ(a, Complex(0.0, 0.0));
+  EXPECT_NO_THROW(plan.type2(f, c, +1));
+}
+
+TEST(Nufft3d, ThreadsAgreeAndPlansAreReused) {
+  const std::array<int, 3> n = {32, 32, 32};
+  const Problem p = random_problem(5000, 13);
+  gc::NufftOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  two.max_subproblem = 500;
+  gc::Nufft3d a(n, 1e-9, one), b(n, 1e-9, two);
+  a.set_points(p.x, p.y, p.z);
+  b.set_points(p.x, p.y, p.z);
+  std::vector<Complex> fa(a.num_modes()), fb(b.num_modes()), fb2(b.num_modes());
+  a.type1(p.c, fa, -1);
+  b.type1(p.c, fb, -1);
+  b.type1(p.c, fb2, -1);  // second call on the same plan
+  EXPECT_LE(rel_l2(fb, fa), 1e-14);
+  EXPECT_LE(rel_l2(fb2, fb), 1e-15);  // atomic adds may change the summation order
+  // New points on the same plan.
+  const Problem q = random_problem(300, 14);
+  b.set_points(q.x, q.y, q.z);
+  std::vector<Complex> fq(b.num_modes());
+  b.type1(q.c, fq, -1);
+  EXPECT_LE(rel_l2(fq, gc::testing::direct_type1(q.x, q.y, q.z, q.c, n, -1)), 1e-9);
+}

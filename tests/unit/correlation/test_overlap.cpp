@@ -1,0 +1,169 @@
+// Translational overlap field and truncated-mode queries against exact sums
+// of sphere-sphere lens volumes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "contact/correlation/ball_kernels.hpp"
+#include "contact/correlation/overlap_field.hpp"
+#include "contact/correlation/truncated_overlap.hpp"
+#include "scenes.hpp"
+
+namespace gc = grains::correlation;
+namespace gt = grains::correlation::testing;
+constexpr double kPi = std::numbers::pi;
+
+namespace {
+
+// Exact sum of lens volumes between the scene and the shape (rotated by R,
+// placed at t), minimum image along periodic axes.
+double exact_overlap(const gt::Scene& scene, const gt::Scene& shape, const std::array<double, 9>& R,
+                     const std::array<double, 3>& t, std::array<double, 3> L,
+                     std::array<bool, 3> periodic) {
+  double v = 0.0;
+  for (std::size_t j = 0; j < shape.radii.size(); ++j) {
+    const double* y = &shape.centres[3 * j];
+    double p[3];
+    for (int a = 0; a < 3; ++a) p[a] = t[a] + R[3 * a] * y[0] + R[3 * a + 1] * y[1] + R[3 * a + 2] * y[2];
+    for (std::size_t i = 0; i < scene.radii.size(); ++i)
+      v += gc::lens_volume(gt::periodic_distance(p, &scene.centres[3 * i], L, periodic), scene.radii[i],
+                           shape.radii[j]);
+  }
+  return v;
+}
+
+std::array<double, 9> rotation(double ax, double ay, double az, double angle) {
+  const double n = std::sqrt(ax * ax + ay * ay + az * az);
+  ax /= n; ay /= n; az /= n;
+  const double c = std::cos(angle), s = std::sin(angle), C = 1 - c;
+  return {c + ax * ax * C,      ax * ay * C - az * s, ax * az * C + ay * s,
+          ay * ax * C + az * s, c + ay * ay * C,      ay * az * C - ax * s,
+          az * ax * C - ay * s, az * ay * C + ax * s, c + az * az * C};
+}
+
+// Max |field - exact| over all nodes, relative to the shape's volume.
+double field_error(const gt::Scene& scene, const gt::Scene& shape, const std::array<double, 9>& R,
+                   const gc::GridSpec& g, double mode_factor) {
+  gc::OverlapFieldOptions opt;
+  opt.mode_factor = mode_factor;
+  opt.tolerance = 1e-9;
+  const auto f = translational_overlap_field(gc::BallSet{scene.centres, scene.radii},
+                                             gc::BallSet{shape.centres, shape.radii}, R, g, opt);
+  std::array<double, 3> L;
+  for (int d = 0; d < 3; ++d) L[d] = g.dims[d] * g.spacing[d];
+  double vshape = 0.0;
+  for (double r : shape.radii) vshape += 4.0 / 3.0 * kPi * r * r * r;
+  double worst = 0.0;
+  for (std::size_t n = 0; n < f.size(); ++n)
+    worst = std::max(worst, std::abs(f[n] - exact_overlap(scene, shape, R, g.node(n), L, g.periodic)));
+  return worst / vshape;
+}
+
+}  // namespace
+
+TEST(OverlapField, SphereAgainstSceneMatchesLensSums) {
+  const double L = 1.0;
+  const auto scene = gt::rsa_scene(L, {0.07, 0.1}, 50, 31);
+  const gt::Scene sphere{{0.0, 0.0, 0.0}, {0.09}};
+  gc::GridSpec g;
+  g.dims = {24, 24, 24};
+  g.spacing = {L / 24, L / 24, L / 24};
+  const double e1 = field_error(scene, sphere, gc::kIdentityRotation, g, 1.0);
+  const double e2 = field_error(scene, sphere, gc::kIdentityRotation, g, 2.0);
+  const double e4 = field_error(scene, sphere, gc::kIdentityRotation, g, 4.0);
+  std::printf("sphere overlap error / sphere volume: modes x1 %.3g  x2 %.3g  x4 %.3g\n", e1, e2, e4);
+  EXPECT_LT(e2, e1);
+  EXPECT_LT(e4, e2);
+  EXPECT_LT(e4, 0.01);
+}
+
+TEST(OverlapField, RotatedClumpInPaddedBoxMatchesLensSums) {
+  const double L = 1.0;
+  const auto scene = gt::rsa_scene(L, {0.08}, 30, 32);
+  // A three-ball clump (overlapping members) about its reference point.
+  const gt::Scene clump{{-0.06, 0.0, 0.0, 0.06, 0.0, 0.0, 0.0, 0.05, 0.02}, {0.06, 0.06, 0.05}};
+  const auto R = rotation(1, 2, 3, 0.7);
+  gc::GridSpec g;
+  g.dims = {20, 20, 20};
+  g.spacing = {L / 20, L / 20, L / 20};
+  g.periodic = {true, false, true};
+  const double e2 = field_error(scene, clump, R, g, 2.0);
+  const double e4 = field_error(scene, clump, R, g, 4.0);
+  std::printf("clump overlap error / clump volume: modes x2 %.3g  x4 %.3g\n", e2, e4);
+  EXPECT_LT(e4, e2);
+  EXPECT_LT(e4, 0.02);
+}
+
+TEST(OverlapField, FreeNodesAreFree) {
+  // Candidates read as V <= threshold, with the shape inflated by a margin:
+  // every candidate is then free for the true shape (exact check).
+  const double L = 1.0;
+  const auto scene = gt::rsa_scene(L, {0.1}, 40, 33);
+  const double s = 0.08, margin = 0.02;
+  const gt::Scene inflated{{0.0, 0.0, 0.0}, {s + margin}};
+  gc::GridSpec g;
+  g.dims = {32, 32, 32};
+  g.spacing = {L / 32, L / 32, L / 32};
+  gc::OverlapFieldOptions opt;
+  opt.mode_factor = 2.0;
+  const auto f = translational_overlap_field(gc::BallSet{scene.centres, scene.radii},
+                                             gc::BallSet{inflated.centres, inflated.radii},
+                                             gc::kIdentityRotation, g, opt);
+  // A penetration of the true shape by any amount means a penetration of at
+  // least `margin` for the inflated one: lens volume >= lens(r + s, r, s + margin).
+  const double threshold = 0.5 * gc::lens_volume(0.1 + s, 0.1, s + margin);
+  const auto nodes = gc::free_nodes(f, threshold);
+  ASSERT_GT(nodes.size(), 10u);
+  std::size_t truly_free = 0;
+  for (std::size_t n = 0; n < f.size(); ++n) {
+    const auto t = g.node(n);
+    double gap = 1e300;
+    for (std::size_t i = 0; i < scene.radii.size(); ++i)
+      gap = std::min(gap, gt::periodic_distance(t.data(), &scene.centres[3 * i], {L, L, L},
+                                                {true, true, true}) - scene.radii[i] - s);
+    if (gap > margin) ++truly_free;  // free even for the inflated shape
+    if (std::binary_search(nodes.begin(), nodes.end(), n)) {
+      EXPECT_GT(gap, 0.0) << n;
+    }
+  }
+  // Nodes with clearance beyond the margin are all found.
+  EXPECT_GE(nodes.size(), truly_free);
+}
+
+TEST(TruncatedOverlap, ErrorDecreasesWithRetainedModes) {
+  // Two clumps; overlap at several relative placements.
+  const gt::Scene a{{0.0, 0.0, 0.0, 0.12, 0.0, 0.0, 0.05, 0.1, 0.0}, {0.1, 0.08, 0.07}};
+  const gt::Scene b{{0.0, 0.0, 0.0, 0.0, 0.0, 0.11, 0.0, 0.09, 0.05}, {0.09, 0.06, 0.06}};
+  const gc::BallSet ba{a.centres, a.radii}, bb{b.centres, b.radii};
+  const auto P = gc::TruncatedOverlap::safe_period(ba, bb, {0.2, 0.2, 0.2});
+  gc::TruncatedOverlapOptions opt;
+  opt.max_mode = {32, 32, 32};
+  const gc::TruncatedOverlap q(ba, bb, P, opt);
+  std::mt19937 rng(34);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  std::vector<std::array<double, 3>> ts;
+  std::vector<double> exact;
+  for (int i = 0; i < 40; ++i) {
+    ts.push_back({u(rng), u(rng), u(rng)});
+    exact.push_back(exact_overlap(a, b, gc::kIdentityRotation, ts.back(), {1e9, 1e9, 1e9},
+                                  {false, false, false}));
+  }
+  double vmax = *std::max_element(exact.begin(), exact.end());
+  ASSERT_GT(vmax, 0.0);
+  std::vector<double> err;
+  const std::vector<std::size_t> mp = {64, 512, 4096, 32768, q.num_modes()};
+  for (std::size_t m : mp) {
+    double e = 0.0;
+    for (std::size_t i = 0; i < ts.size(); ++i) e += std::pow(q.overlap(ts[i], m) - exact[i], 2);
+    err.push_back(std::sqrt(e / ts.size()) / vmax);
+    std::printf("truncated query m' = %zu: rms error / max overlap = %.3g\n", m, err.back());
+  }
+  for (std::size_t i = 1; i < err.size(); ++i) EXPECT_LT(err[i], err[i - 1]) << mp[i];
+  EXPECT_LT(err.back(), 0.01);
+  // Far apart: no overlap, and the full-spectrum query says so.
+  EXPECT_NEAR(q.overlap({0.0, 0.0, 0.0}, q.num_modes()),
+              exact_overlap(a, b, gc::kIdentityRotation, {0, 0, 0}, {1e9, 1e9, 1e9}, {false, false, false}),
+              0.01 * vmax);
+}
