@@ -1,0 +1,41 @@
+// Ellipsoid-ellipsoid contact geometry: see ellipsoid_contact.hpp.
+#include "contact/ellipsoid/ellipsoid_contact.hpp"
+
+#include <cmath>
+
+#include "contact/ellipsoid/surface_curvature.hpp"
+
+namespace grains::contact {
+
+using Eigen::Vector3d;
+
+ContactGeometry contact_geometry_from_pw85(const Vector3d& ci, const SymMat3& qi, const Vector3d& cj,
+                                           const SymMat3& qj, const Pw85Result& pw85) {
+  const Vector3d& n = pw85.normal;  // from i towards j
+  const Vector3d qin = form_times(qi, n), qjn = form_times(qj, n);
+  const double hi = std::sqrt(n.dot(qin)), hj = std::sqrt(n.dot(qjn));
+  const Vector3d pi = ci + qin / hi, pj = cj - qjn / hj;
+  ContactGeometry g;
+  g.normal = -n;
+  g.overlap = hi + hj - (cj - ci).dot(n);
+  g.point = 0.5 * (pi + pj);
+  Vector3d t1, t2;
+  tangent_basis(n, t1, t2);
+  g.radius = hertz_radius(curvature_tensor(qi, n, t1, t2) + curvature_tensor(qj, n, t1, t2));
+  return g;
+}
+
+EllipsoidPairContact ellipsoid_contact(const Vector3d& ci, const SymMat3& qi, const Vector3d& cj,
+                                       const SymMat3& qj, double lambda_guess) {
+  EllipsoidPairContact c;
+  Pw85Options opt;
+  opt.lambda_guess = lambda_guess;
+  opt.stop_if_separated = true;
+  c.pw85 = pw85_contact(cj - ci, qi, qj, opt);
+  if (c.pw85.status != Pw85Status::ok) return c;
+  c.geometry = contact_geometry_from_pw85(ci, qi, cj, qj, c.pw85);
+  c.touching = c.pw85.mu2 < 1.0;
+  return c;
+}
+
+}  // namespace grains::contact

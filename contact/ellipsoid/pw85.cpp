@@ -1,0 +1,266 @@
+// PW85 contact function: safeguarded Newton on f'(lambda) = 0. See pw85.hpp
+// for the problem and docs/pw85.md for the method and its measured accuracy.
+#include "contact/ellipsoid/pw85.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace grains::contact {
+
+using Eigen::Vector3d;
+
+const char* to_string(Pw85Status s) {
+  switch (s) {
+    case Pw85Status::ok: return "ok";
+    case Pw85Status::separated: return "separated";
+    case Pw85Status::not_spd: return "not symmetric positive-definite";
+    case Pw85Status::non_finite_input: return "non-finite input";
+    case Pw85Status::not_converged: return "not converged";
+  }
+  return "unknown";
+}
+
+namespace {
+
+
+// Q = L D L^T of a packed symmetric 3x3 matrix (L unit lower triangular).
+struct Ldl {
+  double d0, d1, d2, l10, l20, l21;
+};
+
+// Returns false unless all three pivots are positive and finite.
+inline bool factor(const double* q, Ldl& f) {
+  f.d0 = q[0];
+  if (!(f.d0 > 0.0)) return false;
+  f.l10 = q[1] / f.d0;
+  f.l20 = q[2] / f.d0;
+  f.d1 = q[3] - f.l10 * q[1];
+  if (!(f.d1 > 0.0)) return false;
+  const double e = q[4] - f.l20 * q[1];  // = d1 * l21
+  f.l21 = e / f.d1;
+  f.d2 = q[5] - f.l20 * q[2] - f.l21 * e;
+  return f.d2 > 0.0 && f.d2 < std::numeric_limits<double>::infinity();
+}
+
+// x = Q^{-1} b; also returns b^T Q^{-1} b = sum y_i^2 / d_i (>= 0 by construction).
+inline Vector3d solve(const Ldl& f, const Vector3d& b, double& bqb) {
+  const double y0 = b[0];
+  const double y1 = b[1] - f.l10 * y0;
+  const double y2 = b[2] - f.l20 * y0 - f.l21 * y1;
+  const double z0 = y0 / f.d0, z1 = y1 / f.d1, z2 = y2 / f.d2;
+  bqb = y0 * z0 + y1 * z1 + y2 * z2;
+  Vector3d x;
+  x[2] = z2;
+  x[1] = z1 - f.l21 * x[2];
+  x[0] = z0 - f.l10 * x[1] - f.l20 * x[2];
+  return x;
+}
+
+inline Vector3d mul(const double* q, const Vector3d& v) {
+  return {q[0] * v[0] + q[1] * v[1] + q[2] * v[2], q[1] * v[0] + q[3] * v[1] + q[4] * v[2],
+          q[2] * v[0] + q[4] * v[1] + q[5] * v[2]};
+}
+
+bool all_finite(const double* p, int n) {
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(p[i])) return false;
+  return true;
+}
+
+// Everything one evaluation at lambda yields. With x = Q(l)^{-1} r,
+// a = x^T Q1 x, b = x^T Q2 x, the two terms of the envelope identity
+// (seed 000, eq. 13) are A1 = (1-l)^2 a and A2 = l^2 b, f = l A1 + (1-l) A2
+// and f' = A1 - A2.
+struct Eval {
+  double f, df, d2f;  // f, f', f'' with respect to lambda
+  double ell, dell;   // ell = log(A1/A2) and d ell / du, u = log(l/(1-l))
+  Vector3d x;         // Q(lambda)^{-1} r
+  Vector3d w;         // Q(lambda)^{-1} (Q2 - Q1) x  (so dx/dlambda = -w)
+};
+
+// lam and lc = 1 - lam are passed separately so that both keep full relative
+// precision near either end. Returns false when Q(lambda) is numerically singular.
+inline bool evaluate(double lam, double lc, const Vector3d& r, const double* q1, const double* q2,
+                     Eval& e) {
+  double q[6];
+  for (int i = 0; i < 6; ++i) q[i] = lc * q1[i] + lam * q2[i];
+  Ldl fac;
+  if (!factor(q, fac)) return false;
+  double g;
+  e.x = solve(fac, r, g);
+  const Vector3d q1x = mul(q1, e.x), q2x = mul(q2, e.x);
+  const double a = e.x.dot(q1x), b = e.x.dot(q2x);
+  const double ll = lam * lc;
+  e.f = ll * g;
+  e.df = lc * lc * a - lam * lam * b;
+  double t;
+  e.w = solve(fac, q2x - q1x, t);
+  e.d2f = -2.0 * g - 2.0 * (lc - lam) * (b - a) + 2.0 * ll * t;
+  e.ell = (a > 0.0 && b > 0.0) ? std::log((lc * lc * a) / (lam * lam * b)) : (e.df > 0.0 ? 1.0 : -1.0);
+  e.dell = -2.0 + 2.0 * ll * (q2x.dot(e.w) / b - q1x.dot(e.w) / a);
+  return true;
+}
+
+Pw85Result invalid(Pw85Status s) {
+  Pw85Result res;
+  res.mu2 = std::numeric_limits<double>::quiet_NaN();
+  res.lambda = std::numeric_limits<double>::quiet_NaN();
+  res.status = s;
+  return res;
+}
+
+}  // namespace
+
+bool is_spd(const SymMat3& q) {
+  Ldl f;
+  return all_finite(q.data(), 6) && factor(q.data(), f);
+}
+
+double pw85_f(double lambda, const Vector3d& r, const SymMat3& q1, const SymMat3& q2) {
+  Eval e;
+  if (!evaluate(lambda, 1.0 - lambda, r, q1.data(), q2.data(), e)) return std::numeric_limits<double>::quiet_NaN();
+  return e.f;
+}
+
+Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat3& q2_in,
+                        const Pw85Options& opt) {
+  if (!all_finite(q1_in.data(), 6) || !all_finite(q2_in.data(), 6) || !all_finite(r_in.data(), 3))
+    return invalid(Pw85Status::non_finite_input);
+  {
+    Ldl f;
+    if (!factor(q1_in.data(), f) || !factor(q2_in.data(), f)) return invalid(Pw85Status::not_spd);
+  }
+  Pw85Result res;
+  if (r_in[0] == 0.0 && r_in[1] == 0.0 && r_in[2] == 0.0) {
+    res.mu2 = 0.0;
+    res.lambda = 0.5;
+    return res;
+  }
+
+  // Exact power-of-two rescaling when the data would over/underflow: with
+  // Q -> 4^k Q, r -> 2^k r the contact function and lambda are unchanged, and
+  // r -> 2^m r multiplies mu2 by 4^m. Skipped for everyday magnitudes.
+  double q1[6], q2[6];
+  std::copy(q1_in.begin(), q1_in.end(), q1);
+  std::copy(q2_in.begin(), q2_in.end(), q2);
+  Vector3d r = r_in;
+  int shift_r = 0;  // total exponent applied to r (undo on mu2 and x0)
+  int shift_m = 0;  // the part of it that changes mu2 (m above)
+  {
+    const double qs = std::max({q1[0], q1[3], q1[5], q2[0], q2[3], q2[5]});
+    const int eq = std::ilogb(qs);
+    if (eq > 200 || eq < -200) {
+      const int k = -(eq / 2);
+      for (int i = 0; i < 6; ++i) {
+        q1[i] = std::ldexp(q1[i], 2 * k);
+        q2[i] = std::ldexp(q2[i], 2 * k);
+      }
+      for (int i = 0; i < 3; ++i) r[i] = std::ldexp(r[i], k);
+      shift_r += k;
+    }
+    const int er = std::ilogb(r.cwiseAbs().maxCoeff());
+    if (er > 200 || er < -200) {
+      const int m = -er;
+      for (int i = 0; i < 3; ++i) r[i] = std::ldexp(r[i], m);
+      shift_r += m;
+      shift_m = m;
+    }
+  }
+
+  // Newton's method on ell(u) = log(A1/A2) = 0 in the logit variable
+  // u = log(lambda/(1-lambda)): for two spheres ell is linear in u (one step),
+  // and maximisers hugging lambda = 0 or 1 (elongated bodies) stay well scaled.
+  // ell has the sign of f', so [u_lo, u_hi] always brackets the maximiser
+  // (f concave, f'(0) > 0 > f'(1)); a step leaving it, or one that fails to
+  // halve the previous one, is replaced by bisection.
+  double u;
+  if (opt.lambda_guess > 0.0 && opt.lambda_guess < 1.0) {
+    u = std::log(opt.lambda_guess / (1.0 - opt.lambda_guess));
+  } else {
+    // Cold start: the exact answer for two spheres of radii h1, h2 (the
+    // support radii of the bodies along r).
+    const Vector3d d = r / r.cwiseAbs().maxCoeff();
+    u = 0.5 * std::log(d.dot(mul(q1, d)) / d.dot(mul(q2, d)));
+  }
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  constexpr double tol_u = 1e-8;  // quadratic convergence: next error ~ 1e-16
+  double u_lo = -inf, u_hi = inf, last_step = inf;
+  double lam = 0.5, lc = 0.5;
+
+  Eval e;
+  Pw85Status status = Pw85Status::not_converged;
+  double best_f = 0.0;  // f >= 0 everywhere: always a valid lower bound
+  int it = 0;
+  while (it < opt.max_iterations) {
+    ++it;
+    const double eu = std::exp(-std::abs(u));  // in (0, 1]: no overflow
+    lam = u >= 0.0 ? 1.0 / (1.0 + eu) : eu / (1.0 + eu);
+    lc = u >= 0.0 ? eu / (1.0 + eu) : 1.0 / (1.0 + eu);
+    if (!evaluate(lam, lc, r, q1, q2, e)) {
+      // Q(lambda) is a convex combination of SPD matrices: this only happens
+      // for pairs too ill-conditioned for double precision.
+      status = Pw85Status::not_converged;
+      break;
+    }
+    best_f = std::max(best_f, e.f);
+    if (opt.stop_if_separated && e.f > std::ldexp(1.0, 2 * shift_m)) {
+      status = Pw85Status::separated;
+      break;
+    }
+    if (e.df == 0.0) {
+      status = Pw85Status::ok;
+      break;
+    }
+    if (e.df > 0.0)
+      u_lo = u;
+    else
+      u_hi = u;
+    const double step = e.dell < 0.0 ? -e.ell / e.dell : inf;
+    const double next = u + step;
+    if (std::abs(step) <= tol_u) {
+      // Take this last step with the derivatives at hand instead of another
+      // factorisation: the error left is of order step^2.
+      const double dlam = lam * lc * std::expm1(step) / (1.0 + lam * std::expm1(step));
+      lam += dlam;
+      lc -= dlam;
+      e.f += dlam * (e.df + 0.5 * dlam * e.d2f);
+      e.x -= dlam * e.w;
+      best_f = std::max(best_f, e.f);
+      status = Pw85Status::ok;
+      break;
+    }
+    if (u_hi - u_lo <= tol_u) {
+      status = Pw85Status::ok;  // bracket at the resolution the data allow
+      break;
+    }
+    if (next > u_lo && next < u_hi && std::abs(step) <= 0.5 * last_step) {
+      u = next;
+      last_step = std::abs(step);
+    } else {
+      if (u_lo == -inf)
+        u = u_hi - std::max(4.0, std::abs(u_hi));
+      else if (u_hi == inf)
+        u = u_lo + std::max(4.0, std::abs(u_lo));
+      else
+        u = 0.5 * (u_lo + u_hi);
+      last_step = inf;
+    }
+  }
+
+  res.status = status;
+  res.iterations = it;
+  res.lambda = lam;
+  res.mu2 = std::ldexp(status == Pw85Status::ok ? e.f : best_f, -2 * shift_m);
+  if (status == Pw85Status::not_converged && it == 1 && best_f == 0.0) return res;
+  const double xn = e.x.norm();
+  if (xn > 0.0 && std::isfinite(xn)) res.normal = e.x / xn;
+  res.x0_rel = mul(q1, e.x) * lc;
+  if (shift_r != 0) {
+    // x0 - c1 = (1-l) Q1 Q^{-1} r has degree 0 in Q and 1 in r.
+    for (int i = 0; i < 3; ++i) res.x0_rel[i] = std::ldexp(res.x0_rel[i], -shift_r);
+  }
+  return res;
+}
+
+}  // namespace grains::contact

@@ -1,0 +1,67 @@
+#pragma once
+// Curvature of an ellipsoid surface at the point with a given outward normal,
+// and the Hertz equivalent radius of two curved surfaces in contact.
+//
+// For E = { m : (m-c)^T Q^{-1} (m-c) <= 1 } the point with outward unit normal
+// n is p = c + Q n / h, h = sqrt(n^T Q n) (the support point). The second
+// fundamental form there is II(t, t) = h t^T Q^{-1} t for tangent t. With an
+// orthonormal tangent basis T = [t1 t2], the 2x2 curvature tensor is
+//     K = h (T^T Q^{-1} T) = h (T^T Q T - v v^T / h^2)^{-1},  v = T^T Q n,
+// (block inverse of [T n]^T Q [T n]); no 3x3 inverse is needed. A sphere of
+// radius a gives K = I / a.
+//
+// Hertz: near the contact the gap between two convex surfaces is
+// (1/2) xi^T (K1 + K2) xi; the equivalent radius of the Hertz law is
+// R* = (R' R'')^{1/2} = 1 / sqrt(det(K1 + K2)) (Johnson, Contact Mechanics,
+// 1985, section 4.2; the elliptic-integral correction for non-circular
+// contact areas, within a few percent for principal-radius ratios below ~5,
+// is neglected). For two spheres this is a1 a2 / (a1 + a2).
+#include <Eigen/Core>
+#include <cmath>
+
+#include "contact/ellipsoid/ellipsoid.hpp"
+
+namespace grains::contact {
+
+// Orthonormal t1, t2 with t1 x t2 = n (n unit).
+inline void tangent_basis(const Eigen::Vector3d& n, Eigen::Vector3d& t1, Eigen::Vector3d& t2) {
+  // Branch-free construction (Duff et al., "Building an orthonormal basis,
+  // revisited", JCGT 2017).
+  const double s = std::copysign(1.0, n[2]);
+  const double a = -1.0 / (s + n[2]);
+  const double b = n[0] * n[1] * a;
+  t1 = {1.0 + s * n[0] * n[0] * a, s * b, -s * n[0]};
+  t2 = {b, s + n[1] * n[1] * a, -n[1]};
+}
+
+// Curvature tensor of ellipsoid form q at its support point in direction n,
+// expressed in the tangent basis (t1, t2) (both orthogonal to n).
+inline Eigen::Matrix2d curvature_tensor(const SymMat3& q, const Eigen::Vector3d& n,
+                                        const Eigen::Vector3d& t1, const Eigen::Vector3d& t2) {
+  const Eigen::Vector3d qn = form_times(q, n), qt1 = form_times(q, t1), qt2 = form_times(q, t2);
+  const double h2 = n.dot(qn);
+  const double v1 = t1.dot(qn), v2 = t2.dot(qn);
+  const double m11 = t1.dot(qt1) - v1 * v1 / h2;
+  const double m12 = t1.dot(qt2) - v1 * v2 / h2;
+  const double m22 = t2.dot(qt2) - v2 * v2 / h2;
+  const double det = m11 * m22 - m12 * m12;
+  const double scale = std::sqrt(h2) / det;
+  Eigen::Matrix2d k;
+  k << m22 * scale, -m12 * scale, -m12 * scale, m11 * scale;
+  return k;
+}
+
+// R* = 1/sqrt(det K) for the summed curvature tensor K. Principal curvatures
+// below `floor` (a conforming or concave pairing, e.g. an ellipsoid flank in a
+// cylinder of nearly the same curvature) are raised to it so R* stays finite.
+inline double hertz_radius(const Eigen::Matrix2d& k, double floor = 0.0) {
+  const double m = 0.5 * (k(0, 0) + k(1, 1));
+  const double r = std::hypot(0.5 * (k(0, 0) - k(1, 1)), k(0, 1));
+  double k1 = m + r;
+  double k2 = k1 > 0.0 ? (k(0, 0) * k(1, 1) - k(0, 1) * k(0, 1)) / k1 : m - r;
+  k1 = std::max(k1, floor);
+  k2 = std::max(k2, floor);
+  return 1.0 / std::sqrt(k1 * k2);
+}
+
+}  // namespace grains::contact
