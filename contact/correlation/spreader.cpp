@@ -125,6 +125,14 @@ void Spreader::spread(const double* c, int nc, double* grid) const {
   const bool atomic = threads_ > 1 && nsub > 1;
   const int n0 = fine_[0], n1 = fine_[1], n2 = fine_[2];
 
+  // Strengths in sorted order first: the random-access reads then overlap in
+  // one simple loop instead of stalling the spreading arithmetic.
+  std::vector<double> cs(static_cast<std::size_t>(nc) * order_.size());
+  const std::int64_t m = static_cast<std::int64_t>(order_.size());
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (std::int64_t q = 0; q < m; ++q)
+    for (int k = 0; k < nc; ++k) cs[nc * q + k] = c[nc * order_[q] + k];
+
   auto body = [&]<int W, int NC>() {
 #pragma omp parallel num_threads(threads_)
     {
@@ -148,15 +156,16 @@ void Spreader::spread(const double* c, int nc, double* grid) const {
           const int ox = kernel_at<W>(poly_, ux_[s], kx) - lo[0];
           const int oy = kernel_at<W>(poly_, uy_[s], ky) - lo[1];
           const int oz = kernel_at<W>(poly_, uz_[s], kz) - lo[2];
-          const double* cv = c + NC * order_[s];
-          double a[W * NC];
+          const double* cv = cs.data() + NC * s;
+          alignas(64) double a[W * NC];
           for (int i = 0; i < W; ++i)
             for (int q = 0; q < NC; ++q) a[i * NC + q] = cv[q] * kx[i];
           for (int dz = 0; dz < W; ++dz) {
             for (int dy = 0; dy < W; ++dy) {
               const double k = kz[dz] * ky[dy];
-              double* row =
+              double* __restrict row =
                   sub.data() + NC * ((static_cast<std::size_t>(oz + dz) * s1 + oy + dy) * s0 + ox);
+#pragma omp simd
               for (int i = 0; i < W * NC; ++i) row[i] += k * a[i];
             }
           }
