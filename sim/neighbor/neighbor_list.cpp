@@ -16,7 +16,7 @@ bool NeighborList::needs_rebuild(const ParticleStore& p, const Walls& walls, dou
   return 2 * m > skin_ || m + walls.max_displacement(time - build_time_) > skin_;
 }
 
-void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo, const Vec3& hi, double time,
+void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bound, const Vec3& hi_bound, double time,
                          bool sort) {
   const std::size_t n = p.n_owned();
   // Remember the old rows by global id, so history can follow its pair.
@@ -29,9 +29,26 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo, c
 
   double rmax = 0;
   for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, p.radius[i]);
-  const double cell = std::max(2 * rmax + skin_, 1e-300);
+  // The grid spans the particles' bounding box (within the given bounds), so
+  // a sparse scene in a large domain does not pay for empty cells; cells
+  // grow when there would be far more cells than particles.
+  Vec3 lo = lo_bound, hi = hi_bound;
+  if (n > 0) {
+    Vec3 blo = p.x[0], bhi = p.x[0];
+    for (std::size_t i = 1; i < n; ++i) {
+      blo = blo.cwiseMin(p.x[i]);
+      bhi = bhi.cwiseMax(p.x[i]);
+    }
+    lo = lo.cwiseMax(blo);
+    hi = hi.cwiseMin(bhi).cwiseMax(lo + Vec3::Constant(1e-12));
+  }
+  double cell = std::max(2 * rmax + skin_, 1e-300);
   std::array<int, 3> dims;
-  for (int d = 0; d < 3; ++d) dims[d] = std::max(1, static_cast<int>(std::floor((hi[d] - lo[d]) / cell)));
+  for (;;) {
+    for (int d = 0; d < 3; ++d) dims[d] = std::max(1, static_cast<int>(std::floor((hi[d] - lo[d]) / cell)));
+    if (static_cast<double>(dims[0]) * dims[1] * dims[2] <= 4.0 * static_cast<double>(n) + 64) break;
+    cell *= 1.26;
+  }
   const Vec3 inv(dims[0] / (hi[0] - lo[0]), dims[1] / (hi[1] - lo[1]), dims[2] / (hi[2] - lo[2]));
   auto cell_of = [&](const Vec3& x, int d) {
     const int c = static_cast<int>((x[d] - lo[d]) * inv[d]);
