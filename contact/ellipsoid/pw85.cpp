@@ -24,23 +24,28 @@ const char* to_string(Pw85Status s) {
 namespace {
 
 
-// Q = L D L^T of a packed symmetric 3x3 matrix (L unit lower triangular).
+// Q = L D L^T of a packed symmetric 3x3 matrix (L unit lower triangular);
+// the reciprocal pivots are kept so that the solves need no division.
 struct Ldl {
-  double d0, d1, d2, l10, l20, l21;
+  double i0, i1, i2, l10, l20, l21;  // 1/d0, 1/d1, 1/d2, L
 };
 
 // Returns false unless all three pivots are positive and finite.
 inline bool factor(const double* q, Ldl& f) {
-  f.d0 = q[0];
-  if (!(f.d0 > 0.0)) return false;
-  f.l10 = q[1] / f.d0;
-  f.l20 = q[2] / f.d0;
-  f.d1 = q[3] - f.l10 * q[1];
-  if (!(f.d1 > 0.0)) return false;
+  const double d0 = q[0];
+  if (!(d0 > 0.0)) return false;
+  f.i0 = 1.0 / d0;
+  f.l10 = q[1] * f.i0;
+  f.l20 = q[2] * f.i0;
+  const double d1 = q[3] - f.l10 * q[1];
+  if (!(d1 > 0.0)) return false;
+  f.i1 = 1.0 / d1;
   const double e = q[4] - f.l20 * q[1];  // = d1 * l21
-  f.l21 = e / f.d1;
-  f.d2 = q[5] - f.l20 * q[2] - f.l21 * e;
-  return f.d2 > 0.0 && f.d2 < std::numeric_limits<double>::infinity();
+  f.l21 = e * f.i1;
+  const double d2 = q[5] - f.l20 * q[2] - f.l21 * e;
+  if (!(d2 > 0.0 && d2 < std::numeric_limits<double>::infinity())) return false;
+  f.i2 = 1.0 / d2;
+  return true;
 }
 
 // x = Q^{-1} b; also returns b^T Q^{-1} b = sum y_i^2 / d_i (>= 0 by construction).
@@ -48,7 +53,7 @@ inline Vector3d solve(const Ldl& f, const Vector3d& b, double& bqb) {
   const double y0 = b[0];
   const double y1 = b[1] - f.l10 * y0;
   const double y2 = b[2] - f.l20 * y0 - f.l21 * y1;
-  const double z0 = y0 / f.d0, z1 = y1 / f.d1, z2 = y2 / f.d2;
+  const double z0 = y0 * f.i0, z1 = y1 * f.i1, z2 = y2 * f.i2;
   bqb = y0 * z0 + y1 * z1 + y2 * z2;
   Vector3d x;
   x[2] = z2;
@@ -97,8 +102,9 @@ inline bool evaluate(double lam, double lc, const Vector3d& r, const double* q1,
   double t;
   e.w = solve(fac, q2x - q1x, t);
   e.d2f = -2.0 * g - 2.0 * (lc - lam) * (b - a) + 2.0 * ll * t;
-  e.ell = (a > 0.0 && b > 0.0) ? std::log((lc * lc * a) / (lam * lam * b)) : (e.df > 0.0 ? 1.0 : -1.0);
-  e.dell = -2.0 + 2.0 * ll * (q2x.dot(e.w) / b - q1x.dot(e.w) / a);
+  const double iab = 1.0 / (a * b);
+  e.ell = (a > 0.0 && b > 0.0) ? std::log((lc * lc * a) * (a * iab) / (lam * lam)) : (e.df > 0.0 ? 1.0 : -1.0);
+  e.dell = -2.0 + 2.0 * ll * (q2x.dot(e.w) * a - q1x.dot(e.w) * b) * iab;
   return true;
 }
 
@@ -114,7 +120,8 @@ Pw85Result invalid(Pw85Status s) {
 
 bool is_spd(const SymMat3& q) {
   Ldl f;
-  return all_finite(q.data(), 6) && factor(q.data(), f);
+  if (!all_finite(q.data(), 6)) return false;
+  return factor(q.data(), f);
 }
 
 double pw85_f(double lambda, const Vector3d& r, const SymMat3& q1, const SymMat3& q2) {
@@ -127,16 +134,7 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
                         const Pw85Options& opt) {
   if (!all_finite(q1_in.data(), 6) || !all_finite(q2_in.data(), 6) || !all_finite(r_in.data(), 3))
     return invalid(Pw85Status::non_finite_input);
-  {
-    Ldl f;
-    if (!factor(q1_in.data(), f) || !factor(q2_in.data(), f)) return invalid(Pw85Status::not_spd);
-  }
   Pw85Result res;
-  if (r_in[0] == 0.0 && r_in[1] == 0.0 && r_in[2] == 0.0) {
-    res.mu2 = 0.0;
-    res.lambda = 0.5;
-    return res;
-  }
 
   // Exact power-of-two rescaling when the data would over/underflow: with
   // Q -> 4^k Q, r -> 2^k r the contact function and lambda are unchanged, and
@@ -148,7 +146,9 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
   int shift_r = 0;  // total exponent applied to r (undo on mu2 and x0)
   int shift_m = 0;  // the part of it that changes mu2 (m above)
   {
-    const double qs = std::max({q1[0], q1[3], q1[5], q2[0], q2[3], q2[5]});
+    const double qs = std::max({std::abs(q1[0]), std::abs(q1[3]), std::abs(q1[5]), std::abs(q2[0]),
+                                std::abs(q2[3]), std::abs(q2[5])});
+    if (!(qs > 0.0)) return invalid(Pw85Status::not_spd);
     const int eq = std::ilogb(qs);
     if (eq > 200 || eq < -200) {
       const int k = -(eq / 2);
@@ -158,6 +158,13 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
       }
       for (int i = 0; i < 3; ++i) r[i] = std::ldexp(r[i], k);
       shift_r += k;
+    }
+    Ldl f1, f2;
+    if (!factor(q1, f1) || !factor(q2, f2)) return invalid(Pw85Status::not_spd);
+    if (r[0] == 0.0 && r[1] == 0.0 && r[2] == 0.0) {
+      res.mu2 = 0.0;  // coincident centres; f = 0 for every lambda
+      res.lambda = 0.5;
+      return res;
     }
     const int er = std::ilogb(r.cwiseAbs().maxCoeff());
     if (er > 200 || er < -200) {
@@ -184,7 +191,7 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
     u = 0.5 * std::log(d.dot(mul(q1, d)) / d.dot(mul(q2, d)));
   }
   constexpr double inf = std::numeric_limits<double>::infinity();
-  constexpr double tol_u = 1e-8;  // quadratic convergence: next error ~ 1e-16
+  constexpr double tol_u = 1e-7;  // quadratic convergence: next error ~ 1e-14
   double u_lo = -inf, u_hi = inf, last_step = inf;
   double lam = 0.5, lc = 0.5;
 
@@ -195,8 +202,9 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
   while (it < opt.max_iterations) {
     ++it;
     const double eu = std::exp(-std::abs(u));  // in (0, 1]: no overflow
-    lam = u >= 0.0 ? 1.0 / (1.0 + eu) : eu / (1.0 + eu);
-    lc = u >= 0.0 ? eu / (1.0 + eu) : 1.0 / (1.0 + eu);
+    const double inv = 1.0 / (1.0 + eu);
+    lam = u >= 0.0 ? inv : eu * inv;
+    lc = u >= 0.0 ? eu * inv : inv;
     if (!evaluate(lam, lc, r, q1, q2, e)) {
       // Q(lambda) is a convex combination of SPD matrices: this only happens
       // for pairs too ill-conditioned for double precision.
