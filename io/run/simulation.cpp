@@ -70,7 +70,11 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
     << "  \"particle_steps_per_second\": " << r.particle_steps_per_second << ",\n"
     << "  \"particles_start\": " << r.particles_start << ",\n  \"particles_end\": " << r.particles_end << ",\n"
     << "  \"lost_particles\": " << r.lost_particles << ",\n  \"neighbor_builds\": " << r.neighbor_builds << ",\n"
-    << "  \"frames\": " << r.frames << "\n}\n";
+    << "  \"frames\": " << r.frames << ",\n  \"stage_seconds\": {";
+  const auto names = s.pipeline.stage_names();
+  for (std::size_t k = 0; k < names.size(); ++k)
+    j << (k ? ", " : "") << "\n    \"" << names[k] << "\": " << s.pipeline.stage_seconds()[k];
+  j << "\n  }\n}\n";
   if (!j) throw std::runtime_error("could not write '" + (opt.out_dir / "summary.json").string() + "'");
   return r;
 }

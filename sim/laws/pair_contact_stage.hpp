@@ -28,11 +28,14 @@ class PairContactStage final : public Stage {
       for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
         const std::size_t j = nl.partner[k];
         double* hist = H > 0 ? nl.history.data() + static_cast<std::size_t>(k) * H : nullptr;
-        contact::ContactGeometry g;
-        if (!contact::sphere_sphere(xi, ri, p.x[j], p.radius[j], g)) {
+        // Cheap rejection first: most list entries are within the skin but not touching.
+        const double rs = ri + p.radius[j];
+        if ((xi - p.x[j]).squaredNorm() >= rs * rs) {
           if constexpr (H > 0) std::fill_n(hist, H, 0.0);
           continue;
         }
+        contact::ContactGeometry g;
+        contact::sphere_sphere(xi, ri, p.x[j], p.radius[j], g);
         const double m = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
         const PairParams& pp = s.pairs(p.material[i], p.material[j]);
         Vec3 v_rel = p.v[i] - p.v[j];

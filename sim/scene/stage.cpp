@@ -1,6 +1,7 @@
 #include "sim/scene/stage.hpp"
 
 #include <algorithm>
+#include <chrono>
 
 namespace grains::sim {
 
@@ -20,11 +21,18 @@ void Pipeline::add(std::unique_ptr<Stage> s) {
   const Phase ph = s->phase();
   auto it = std::find_if(stages_.begin(), stages_.end(), [ph](const auto& t) { return t->phase() > ph; });
   stages_.insert(it, std::move(s));
+  seconds_.assign(stages_.size(), 0.0);
+}
+
+void Pipeline::run_timed(std::size_t k, Scene& s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  stages_[k]->run(s);
+  seconds_[k] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void Pipeline::run_phase(Scene& s, Phase p) {
-  for (auto& st : stages_)
-    if (st->phase() == p) st->run(s);
+  for (std::size_t k = 0; k < stages_.size(); ++k)
+    if (stages_[k]->phase() == p) run_timed(k, s);
 }
 
 void Pipeline::initialize(Scene& s) {
@@ -33,18 +41,11 @@ void Pipeline::initialize(Scene& s) {
 }
 
 void Pipeline::step(Scene& s) {
-  for (auto& st : stages_) {
-    if (st->phase() == Phase::Output) {
-      s.clock.step += 1;
-      s.clock.time = static_cast<double>(s.clock.step) * s.clock.dt;
-      for (auto& o : stages_)
-        if (o->phase() == Phase::Output) o->run(s);
-      return;
-    }
-    st->run(s);
-  }
+  std::size_t k = 0;
+  for (; k < stages_.size() && stages_[k]->phase() != Phase::Output; ++k) run_timed(k, s);
   s.clock.step += 1;
   s.clock.time = static_cast<double>(s.clock.step) * s.clock.dt;
+  for (; k < stages_.size(); ++k) run_timed(k, s);
 }
 
 void Pipeline::finish(Scene& s) {

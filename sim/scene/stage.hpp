@@ -39,10 +39,14 @@ class Pipeline {
   void finish(Scene& s);
   std::vector<std::string> stage_names() const;
   const std::vector<std::unique_ptr<Stage>>& stages() const { return stages_; }
+  /// Wall-clock seconds spent in each stage so far (same order as stages()).
+  const std::vector<double>& stage_seconds() const { return seconds_; }
 
  private:
   void run_phase(Scene& s, Phase p);
+  void run_timed(std::size_t k, Scene& s);
   std::vector<std::unique_ptr<Stage>> stages_;
+  std::vector<double> seconds_;
 };
 
 }  // namespace grains::sim
