@@ -5,6 +5,11 @@
 // laws never know what shape produced it.
 #include <Eigen/Core>
 
+// Hot geometry and law kernels are forced inline into the contact loops.
+#ifndef GRAINS_INLINE
+#define GRAINS_INLINE inline __attribute__((always_inline))
+#endif
+
 namespace grains::contact {
 
 using Vec3 = Eigen::Vector3d;

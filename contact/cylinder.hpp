@@ -20,7 +20,7 @@ struct CylinderSurface {
 
 /// Distance of the sphere centre from the surface along its outward (towards
 /// the particle) normal; returns false outside the axial extent.
-inline bool sphere_cylinder(const Vec3& x, double r, const CylinderSurface& c, ContactGeometry& g) {
+GRAINS_INLINE bool sphere_cylinder(const Vec3& x, double r, const CylinderSurface& c, ContactGeometry& g) {
   const Vec3 rel = x - c.base;
   const double t = rel.dot(c.axis);
   if (t < c.t_min || t > c.t_max) return false;

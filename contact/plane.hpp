@@ -6,11 +6,11 @@
 namespace grains::contact {
 
 /// Signed distance of point x from the plane (point p, unit normal n).
-inline double plane_distance(const Vec3& x, const Vec3& p, const Vec3& n) { return n.dot(x - p); }
+GRAINS_INLINE double plane_distance(const Vec3& x, const Vec3& p, const Vec3& n) { return n.dot(x - p); }
 
 /// Fills g (normal = plane normal, from the wall towards the sphere) and returns
 /// true when the sphere (x, r) touches the plane. R* is the sphere radius.
-inline bool sphere_plane(const Vec3& x, double r, const Vec3& p, const Vec3& n, ContactGeometry& g) {
+GRAINS_INLINE bool sphere_plane(const Vec3& x, double r, const Vec3& p, const Vec3& n, ContactGeometry& g) {
   const double dist = plane_distance(x, p, n);
   if (dist >= r) return false;
   g.normal = n;

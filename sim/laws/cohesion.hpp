@@ -1,4 +1,5 @@
 #pragma once
+#include "contact/contact_geometry.hpp"
 // Cohesion slot.
 //  * NoCohesion.
 //  * SjkrCohesion: simplified JKR; an attractive normal force k_c A over the
@@ -16,13 +17,13 @@ namespace grains::sim {
 
 struct NoCohesion {
   static constexpr const char* name = "none";
-  static inline double force(double, double, const PairParams&) { return 0.0; }
+  static GRAINS_INLINE double force(double, double, const PairParams&) { return 0.0; }
 };
 
 struct SjkrCohesion {
   static constexpr const char* name = "sjkr";
   /// Attractive force magnitude (>= 0) for overlap d and effective radius R.
-  static inline double force(double d, double R, const PairParams& p) { return p.cohesion * 2.0 * M_PI * R * d; }
+  static GRAINS_INLINE double force(double d, double R, const PairParams& p) { return p.cohesion * 2.0 * M_PI * R * d; }
 };
 
 }  // namespace grains::sim

@@ -36,7 +36,7 @@ struct ContactLaw {
 
   /// v_rel: velocity of i relative to j at the contact point; w_rel = omega_i - omega_j
   /// (ignored without rotation). m: effective mass. hist: history_size doubles.
-  static inline Result evaluate(const contact::ContactGeometry& g, const Eigen::Vector3d& v_rel,
+  static GRAINS_INLINE Result evaluate(const contact::ContactGeometry& g, const Eigen::Vector3d& v_rel,
                                 const Eigen::Vector3d& w_rel, double m, const PairParams& p, double dt,
                                 double* hist) {
     const Eigen::Vector3d& n = g.normal;

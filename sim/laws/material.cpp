@@ -1,5 +1,7 @@
 #include "sim/laws/material.hpp"
 
+#include <cmath>
+
 #include "sim/laws/restitution.hpp"
 
 namespace grains::sim {
@@ -26,6 +28,7 @@ PairTable::PairTable(const std::vector<Material>& mats, const std::vector<PairOv
           if (o.cohesion >= 0) p.cohesion = o.cohesion;
         }
       p.damping = damping_for_restitution(p.restitution);
+      p.tangential_damping_ratio = 2.0 * std::sqrt(p.G_eff / p.E_eff);
       table_[static_cast<std::size_t>(a) * n_ + b] = p;
     }
 }

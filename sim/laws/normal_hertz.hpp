@@ -1,4 +1,5 @@
 #pragma once
+#include "contact/contact_geometry.hpp"
 // Normal slot: Hertz elastic force with viscous damping calibrated to the
 // target restitution (restitution.hpp), clamped at zero so that an
 // uncohesive contact never pulls:
@@ -15,17 +16,19 @@ struct NormalState {
   double force;      // clamped normal force magnitude (>= 0), acts on i along +n
   double sqrt_Rd;    // sqrt(R* d), the Hertz contact radius
   double stiffness;  // tangent stiffness S_n = 2 E* sqrt(R* d)
+  double damping_scale;  // sqrt(m* K d^{1/2}); the normal damping coefficient is a times this
 };
 
 struct HertzNormal {
   /// d: overlap; d_dot: rate of overlap (approach > 0); R: effective radius; m: effective mass.
-  static inline NormalState evaluate(double d, double d_dot, double R, double m, const PairParams& p) {
-    const double sqrt_Rd = std::sqrt(R * d);
-    const double K = (4.0 / 3.0) * p.E_eff * std::sqrt(R);
-    const double sqrt_d = std::sqrt(d);
-    const double elastic = K * d * sqrt_d;
-    const double viscous = p.damping * std::sqrt(m * K) * std::sqrt(sqrt_d) * d_dot;
-    return {std::max(0.0, elastic + viscous), sqrt_Rd, 2.0 * p.E_eff * sqrt_Rd};
+  /// Three square roots per contact: sqrt(R), sqrt(d) and the damping scale.
+  static GRAINS_INLINE NormalState evaluate(double d, double d_dot, double R, double m, const PairParams& p) {
+    const double sR = std::sqrt(R), sd = std::sqrt(d);
+    const double sqrt_Rd = sR * sd;
+    const double K = (4.0 / 3.0) * p.E_eff * sR;
+    const double scale = std::sqrt(m * K * sd);  // = sqrt(m* K) d^{1/4}
+    const double f = K * d * sd + p.damping * scale * d_dot;
+    return {f > 0 ? f : 0.0, sqrt_Rd, 2.0 * p.E_eff * sqrt_Rd, scale};
   }
 };
 

@@ -11,6 +11,7 @@ struct PairParams {
   double friction = 0;          // sliding friction coefficient mu
   double rolling_friction = 0;  // rolling friction coefficient mu_r (dimensionless)
   double cohesion = 0;          // cohesion energy density k_c, J/m^3 (SJKR)
+  double tangential_damping_ratio = 0;  // 2 sqrt(G*/E*): eta_t / (a sqrt(m* K) d^{1/4})
 };
 
 }  // namespace grains::sim

@@ -1,4 +1,5 @@
 #pragma once
+#include "contact/contact_geometry.hpp"
 // Rolling-resistance slot.
 //  * NoRolling.
 //  * EpsdRolling: elastic-plastic spring-dashpot model (Ai, Chen, Rotter & Ooi,
@@ -19,7 +20,7 @@ struct NoRolling {
   static constexpr int history_size = 0;
   static constexpr bool needs_rotation = false;
   static constexpr const char* name = "none";
-  static inline Eigen::Vector3d torque(const Eigen::Vector3d&, const Eigen::Vector3d&, const NormalState&, double,
+  static GRAINS_INLINE Eigen::Vector3d torque(const Eigen::Vector3d&, const Eigen::Vector3d&, const NormalState&, double,
                                        const PairParams&, double, double*) {
     return Eigen::Vector3d::Zero();
   }
@@ -30,7 +31,7 @@ struct EpsdRolling {
   static constexpr bool needs_rotation = true;
   static constexpr const char* name = "epsd";
   /// w_rel = omega_i - omega_j. Returns the rolling torque on i (j gets minus it).
-  static inline Eigen::Vector3d torque(const Eigen::Vector3d& n, const Eigen::Vector3d& w_rel,
+  static GRAINS_INLINE Eigen::Vector3d torque(const Eigen::Vector3d& n, const Eigen::Vector3d& w_rel,
                                        const NormalState& ns, double R, const PairParams& p, double dt,
                                        double* h) {
     Eigen::Map<Eigen::Vector3d> mr(h);

@@ -1,4 +1,5 @@
 #pragma once
+#include "contact/contact_geometry.hpp"
 // Tangential slot.
 //  * NoTangential: frictionless; no history, no rotation fields.
 //  * MindlinTangential: incremental Mindlin no-slip spring k_t = 8 G* sqrt(R* d)
@@ -21,7 +22,7 @@ struct NoTangential {
   static constexpr int history_size = 0;
   static constexpr bool needs_rotation = false;
   static constexpr const char* name = "none";
-  static inline Eigen::Vector3d force(const Eigen::Vector3d&, const Eigen::Vector3d&, const NormalState&,
+  static GRAINS_INLINE Eigen::Vector3d force(const Eigen::Vector3d&, const Eigen::Vector3d&, const NormalState&,
                                       double, const PairParams&, double, double*) {
     return Eigen::Vector3d::Zero();
   }
@@ -32,7 +33,7 @@ struct MindlinTangential {
   static constexpr bool needs_rotation = true;
   static constexpr const char* name = "mindlin";
   /// n: unit normal (j -> i); vt: tangential relative velocity of i w.r.t. j at the contact point.
-  static inline Eigen::Vector3d force(const Eigen::Vector3d& n, const Eigen::Vector3d& vt, const NormalState& ns,
+  static GRAINS_INLINE Eigen::Vector3d force(const Eigen::Vector3d& n, const Eigen::Vector3d& vt, const NormalState& ns,
                                       double m, const PairParams& p, double dt, double* h) {
     Eigen::Map<Eigen::Vector3d> xi(h);
     // Rotate the stored spring into the tangent plane, keeping its length.
@@ -44,7 +45,9 @@ struct MindlinTangential {
     }
     xi += vt * dt;
     const double kt = 8.0 * p.G_eff * ns.sqrt_Rd;
-    const double eta = p.damping * 0.816496580927726 * std::sqrt(m * kt);  // a sqrt(2/3) sqrt(m k_t)
+    // eta_t = a sqrt(2/3) sqrt(m k_t) = a 2 sqrt(G*/E*) sqrt(m K d^{1/2}) (no extra square root).
+    const double eta = p.damping * p.tangential_damping_ratio * ns.damping_scale;
+    (void)m;
     Eigen::Vector3d ft = -kt * xi - eta * vt;
     const double limit = p.friction * ns.force;
     const double ft2 = ft.squaredNorm();

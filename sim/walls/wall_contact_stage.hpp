@@ -1,4 +1,5 @@
 #pragma once
+#include "contact/contact_geometry.hpp"
 // Sphere-wall contacts through the same Law as particle pairs: the wall is
 // body j with infinite mass (m* = m_i), the wall's velocity and no spin.
 // History per (particle, wall) lives in the particle's wall-history field.
@@ -11,7 +12,7 @@ namespace grains::sim {
 
 template <class Law>
 struct WallContact {
-  static inline void apply(ParticleStore& p, std::size_t i, const contact::ContactGeometry& g,
+  static GRAINS_INLINE void apply(ParticleStore& p, std::size_t i, const contact::ContactGeometry& g,
                            const Vec3& wall_velocity, const PairParams& pp, double dt, double* hist) {
     Vec3 v_rel = p.v[i] - wall_velocity;
     Vec3 w_rel = Vec3::Zero();
