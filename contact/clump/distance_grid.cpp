@@ -121,9 +121,15 @@ DistanceGrid compute_distance_grid(const mesh::TriangleMesh& mesh, int n, const 
       for (int i = 0; i < n; ++i) {
         double& v = g.phi[g.index(i, j, k)];
         if (v >= near) continue;
-        const double e = exact->signed_distance(g.node(i, j, k), std::abs(v) + g.h);
+        const Eigen::Vector3d x = g.node(i, j, k);
+        double e = exact->signed_distance(x, std::abs(v) + g.h);
+        if ((e <= 0.0) != (v <= 0.0)) {
+          // The two signs disagree: let the winding number decide.
+          const bool inside = exact->winding_number(x) > 0.5;
+          if (inside != (v <= 0.0)) ++sign_errors;
+          e = inside ? -std::abs(e) : std::abs(e);
+        }
         max_err = std::max(max_err, std::abs(e - v));
-        if ((e <= 0.0) != (v <= 0.0)) ++sign_errors;
         v = e;
         ++count;
       }

@@ -9,8 +9,11 @@
 // of the solid and breaks the seed's bound. So every node that OpenVDB puts
 // inside or within 2.5 h outside is recomputed exactly (closest triangle by
 // BVH, sign by angle-weighted pseudo-normals; mesh_distance.hpp), using the
-// OpenVDB value as the search radius. Nodes OpenVDB puts farther outside
-// keep its (positive) value: they never become balls.
+// OpenVDB value as the search radius. Where the OpenVDB sign and the
+// pseudo-normal sign disagree, the generalized winding number decides (the
+// pseudo-normal sign fails on a few nodes near the cow's sliver faces).
+// Nodes OpenVDB puts farther outside keep its (positive) value: they never
+// become balls.
 //
 // Grid convention (the seed's Appendix A with cell-centred nodes): the mesh's
 // bounding box is enclosed in the cube of edge 2L = its largest extent,
@@ -34,7 +37,7 @@ struct DistanceGrid {
   std::vector<double> phi;                       // signed distance, < 0 inside; index i + n (j + n k)
   size_t nodes_exact = 0;        // nodes recomputed exactly
   double max_vdb_error = 0.0;    // largest |OpenVDB - exact| over those nodes
-  size_t vdb_sign_errors = 0;    // nodes where OpenVDB's sign was wrong
+  size_t vdb_sign_errors = 0;    // nodes where OpenVDB's sign was wrong (by the winding number)
   double seconds_vdb = 0.0, seconds_exact = 0.0;
 
   size_t index(int i, int j, int k) const { return size_t(i) + size_t(n) * (size_t(j) + size_t(n) * size_t(k)); }

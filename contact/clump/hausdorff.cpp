@@ -59,7 +59,10 @@ HausdorffResult measure_hausdorff(const mesh::TriangleMesh& mesh, const MeshDist
       const Eigen::Vector3d q = b.center + b.radius * Eigen::Vector3d(rho * std::cos(phi), rho * std::sin(phi), z);
       if (U.contains(q, -tol)) continue;  // inside another ball: not on the boundary of U
       ++res.union_samples;
-      const double d = std::max(0.0, distance.signed_distance(q));
+      double d = std::max(0.0, distance.signed_distance(q));
+      // A claimed excess over the current maximum is checked with the
+      // winding number, robust where the pseudo-normal sign is not.
+      if (d > res.union_to_mesh && distance.winding_number(q) > 0.5) d = 0.0;
       if (d > res.union_to_mesh) {
         res.union_to_mesh = d;
         if (d > res.hausdorff) {

@@ -166,6 +166,20 @@ double MeshDistance::signed_distance(const Eigen::Vector3d& p, double bound) con
   return sign_of(h, p) * std::sqrt(h.dist2);
 }
 
+double MeshDistance::winding_number(const Eigen::Vector3d& p) const {
+  // Van Oosterom & Strackee (1983): tan(Omega / 2) = det[a b c] /
+  // (|a||b||c| + (a.b)|c| + (b.c)|a| + (c.a)|b|), a, b, c the corners relative to p.
+  double sum = 0.0;
+  for (const auto& t : faces_) {
+    const Eigen::Vector3d a = vertices_[t[0]] - p, b = vertices_[t[1]] - p, c = vertices_[t[2]] - p;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    const double det = a.dot(b.cross(c));
+    const double den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+    sum += 2.0 * std::atan2(det, den);
+  }
+  return sum / (4.0 * M_PI);
+}
+
 double MeshDistance::sign_of(const Hit& h, const Eigen::Vector3d& p) const {
   if (h.face < 0) return 1.0;
   Eigen::Vector3d n;

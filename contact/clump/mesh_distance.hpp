@@ -24,6 +24,10 @@ public:
   // Distance to the surface: positive outside, negative inside.
   double signed_distance(const Eigen::Vector3d& p) const;
   double unsigned_distance(const Eigen::Vector3d& p) const;
+  // Generalized winding number (sum of the solid angles of the faces over
+  // 4 pi): 1 inside a closed outward mesh, 0 outside, robust where the
+  // pseudo-normal sign is not (self-touching or sliver faces). O(faces).
+  double winding_number(const Eigen::Vector3d& p) const;
   // Same, searching first within `bound` of p (a good guess makes the query
   // several times faster); the result is exact whatever the guess.
   double signed_distance(const Eigen::Vector3d& p, double bound) const;

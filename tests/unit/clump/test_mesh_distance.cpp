@@ -50,6 +50,13 @@ TEST(MeshDistance, CowAgainstBruteForce) {
   }
 }
 
+TEST(MeshDistance, WindingNumber) {
+  const auto m = test_mesh("cube.off");
+  const MeshDistance d(m);
+  EXPECT_NEAR(d.winding_number({0.3, -0.2, 0.9}), 1.0, 1e-12);
+  EXPECT_NEAR(d.winding_number({1.3, -0.2, 0.9}), 0.0, 1e-12);
+}
+
 TEST(DistanceGrid, NodesMatchExactDistance) {
   const auto m = test_mesh("cow.off");
   const MeshDistance d(m);
@@ -59,7 +66,7 @@ TEST(DistanceGrid, NodesMatchExactDistance) {
   for (int k = 0; k < g.n; ++k)
     for (int j = 0; j < g.n; ++j)
       for (int i = 0; i < g.n; ++i) {
-        const double e = d.signed_distance(g.node(i, j, k));
+        const double e = reference_signed_distance(d, g.node(i, j, k));
         const double v = g.phi[g.index(i, j, k)];
         if (e < 2.0 * g.h) {
           EXPECT_NEAR(v, e, 1e-6) << i << " " << j << " " << k;

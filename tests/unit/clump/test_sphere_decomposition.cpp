@@ -21,7 +21,7 @@ TEST(SphereDecomposition, InvariantsOfTheThreeSteps) {
   ASSERT_GT(s.n1(), 0u);
   EXPECT_LT(s.n3(), s.n1());
   // A1 balls are inscribed: radius = distance to the surface at the centre.
-  for (const Ball& b : s.a1) EXPECT_NEAR(d.signed_distance(b.center), -b.radius, 1e-6);
+  for (const Ball& b : s.a1) EXPECT_NEAR(reference_signed_distance(d, b.center), -b.radius, 1e-6);
   // Every node of X is covered by A1.
   size_t nx = 0;
   for (int k = 0; k < g.n; ++k)
@@ -41,7 +41,7 @@ TEST(SphereDecomposition, InvariantsOfTheThreeSteps) {
     EXPECT_TRUE(inside);
   }
   // A3 balls are A1 balls expanded by eps.
-  for (const Ball& b : s.a3) EXPECT_NEAR(-d.signed_distance(b.center) + s.epsilon, b.radius, 1e-6);
+  for (const Ball& b : s.a3) EXPECT_NEAR(-reference_signed_distance(d, b.center) + s.epsilon, b.radius, 1e-6);
 }
 
 TEST(SphereDecomposition, SphereCollapsesToOneBallOnAnOddGrid) {
