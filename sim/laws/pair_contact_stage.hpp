@@ -29,14 +29,24 @@ class PairContactStage final : public Stage {
         const std::size_t j = nl.partner[k];
         double* hist = H > 0 ? nl.history.data() + static_cast<std::size_t>(k) * H : nullptr;
         // Cheap rejection first: most list entries are within the skin but not touching.
-        const double rs = ri + p.radius[j];
-        if ((xi - p.x[j]).squaredNorm() >= rs * rs) {
-          if constexpr (H > 0) std::fill_n(hist, H, 0.0);
+        const auto& pc = nl.pair_constants[k];
+        const Vec3 d = xi - p.x[j];
+        const double d2 = d.squaredNorm();
+        if (d2 >= pc.contact2) {
+          // Forget the history of a broken contact (write only if there is any).
+          if constexpr (H > 0)
+            if (hist[0] != 0.0 || std::any_of(hist + 1, hist + H, [](double h) { return h != 0.0; }))
+              std::fill_n(hist, H, 0.0);
           continue;
         }
+        // Sphere-sphere geometry (as contact::sphere_sphere, with R* from the list).
         contact::ContactGeometry g;
-        contact::sphere_sphere(xi, ri, p.x[j], p.radius[j], g);
-        const double m = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+        const double dist = std::sqrt(d2);
+        g.normal = dist > 0 ? Vec3(d * (1.0 / dist)) : Vec3(0, 0, 1);
+        g.overlap = ri + p.radius[j] - dist;
+        g.point = p.x[j] + g.normal * (p.radius[j] - 0.5 * g.overlap);
+        g.radius = pc.radius;
+        const double m = pc.mass;
         const PairParams& pp = s.pairs(p.material[i], p.material[j]);
         Vec3 v_rel = p.v[i] - p.v[j];
         Vec3 w_rel = Vec3::Zero();

@@ -6,9 +6,8 @@
 //    on the accumulated tangential displacement xi (3 doubles of history per
 //    contact), viscous damping eta_t = a sqrt(2/3) sqrt(m* k_t) (the same
 //    calibrated ratio as the normal slot), Coulomb limit |F_t| <= mu F_n. The
-//    history is rotated into the current tangent plane each step (magnitude
-//    kept) and, while sliding, reset to the spring length that gives the
-//    Coulomb force.
+//    history is projected onto the current tangent plane each step and,
+//    while sliding, reset to the spring length that gives the Coulomb force.
 // Case-file keys: materials[].friction, materials[].poisson_ratio.
 #include <cmath>
 
@@ -36,13 +35,9 @@ struct MindlinTangential {
   static GRAINS_INLINE Eigen::Vector3d force(const Eigen::Vector3d& n, const Eigen::Vector3d& vt, const NormalState& ns,
                                       double m, const PairParams& p, double dt, double* h) {
     Eigen::Map<Eigen::Vector3d> xi(h);
-    // Rotate the stored spring into the tangent plane, keeping its length.
-    const double len2 = xi.squaredNorm();
-    if (len2 > 0) {
-      xi -= n * n.dot(xi);
-      const double l2 = xi.squaredNorm();
-      if (l2 > 0) xi *= std::sqrt(len2 / l2);
-    }
+    // Project the stored spring onto the current tangent plane. (Its length
+    // changes by a factor cos(angle turned in one step): second order in dt.)
+    xi -= n * n.dot(xi);
     xi += vt * dt;
     const double kt = 8.0 * p.G_eff * ns.sqrt_Rd;
     // eta_t = a sqrt(2/3) sqrt(m k_t) = a 2 sqrt(G*/E*) sqrt(m K d^{1/2}) (no extra square root).

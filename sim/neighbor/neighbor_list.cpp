@@ -116,6 +116,13 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   // Keep each row ordered by partner index: better locality, deterministic order.
   for (std::size_t i = 0; i < n; ++i) std::sort(partner.begin() + row_start[i], partner.begin() + row_start[i + 1]);
 
+  pair_constants.resize(partner.size());
+  for (std::size_t i = 0; i < n; ++i)
+    for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
+      const auto j = partner[k];
+      const double rs = p.radius[i] + p.radius[j];
+      pair_constants[k] = {rs * rs, p.radius[i] * p.radius[j] / rs, p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j])};
+    }
   history.assign(partner.size() * static_cast<std::size_t>(history_size_), 0.0);
   if (history_size_ > 0) carry_history(p);
 

@@ -44,6 +44,13 @@ class NeighborList {
   std::vector<std::uint32_t> row_start;
   std::vector<std::uint32_t> partner;   // local index of the other particle
   std::vector<double> history;          // history_size per entry
+  /// Per-entry constants of a sphere pair, computed at build time: the
+  /// squared contact distance (ri + rj)^2, R* and m*. They never change
+  /// between builds, so the force loop does no divisions for them.
+  struct PairConstants {
+    double contact2, radius, mass;
+  };
+  std::vector<PairConstants> pair_constants;
   std::vector<std::vector<std::uint32_t>> plane_near, cylinder_near;  // per wall
 
   const Stats& stats() const { return stats_; }
