@@ -1,6 +1,11 @@
 #include "io/cli/commands.hpp"
 
+#include <fstream>
+#include <iostream>
 #include <sstream>
+
+#include "contact/clump/clump_command.hpp"
+#include "contact/ellipsoid/pw85_batch.hpp"
 
 namespace grains::io {
 
@@ -24,8 +29,20 @@ std::string format_doc(const sim::EffectDoc& d) {
 }
 
 int run_tool_command(const std::string& cmd, const std::vector<std::string>& args) {
-  (void)cmd;
-  (void)args;
+  if (cmd == "pw85") {
+    if (args.size() > 1 || (args.size() == 1 && args[0].size() > 1 && args[0][0] == '-')) {
+      std::cerr << "usage: grains pw85 [FILE]   (CSV with header q1_0..q1_5,q2_0..q2_5,r_0,r_1,r_2; stdin without FILE)\n";
+      return 2;
+    }
+    if (args.empty() || args[0] == "-") return contact::run_pw85_batch(std::cin, std::cout, std::cerr);
+    std::ifstream in(args[0]);
+    if (!in) {
+      std::cerr << "grains pw85: cannot open '" << args[0] << "'\n";
+      return 2;
+    }
+    return contact::run_pw85_batch(in, std::cout, std::cerr);
+  }
+  if (cmd == "clump") return grains::clump::run_clump_command(args, std::cout, std::cerr);
   return -1;
 }
 
