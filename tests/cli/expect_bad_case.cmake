@@ -1,0 +1,10 @@
+execute_process(COMMAND ${G} run ${CASE} -o /tmp/grains_bad_case_out RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_VARIABLE out)
+if(NOT rc EQUAL 2)
+  message(FATAL_ERROR "expected exit status 2, got ${rc}\n${err}")
+endif()
+foreach(want "bad_keys.yaml:9:5: materials\\[0\\]: unknown key 'frction'; did you mean 'friction'\\?"
+             "bad_keys.yaml:12:13: particles\\[0\\]: radius = -0.0005 m is out of range; valid: > 0")
+  if(NOT err MATCHES "${want}")
+    message(FATAL_ERROR "missing message '${want}' in:\n${err}")
+  endif()
+endforeach()

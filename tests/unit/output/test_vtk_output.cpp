@@ -1,0 +1,99 @@
+// A run's output can be read back by VTK: the .pvd index lists every frame,
+// each frame carries the documented arrays, and summary.json exists.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include "tests/support/sim_helpers.hpp"
+
+namespace grains::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(VtkOutput, FramesAndSeriesReadBack) {
+  const std::string yaml = R"(
+domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.02]}
+gravity: [0, 0, -9.81]
+materials:
+  - {name: m, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3, friction: 0.3}
+particles:
+  - {material: m, radius: 0.0005, count: 40, placement: {type: random_fill, region: {min: [0, 0, 0], max: [0.01, 0.01, 0.02]}}}
+walls:
+  - {type: plane, point: [0, 0, 0], normal: [0, 0, 1], material: m}
+  - {type: cylinder, base: [0.005, 0.005, 0], radius: 0.005, height: 0.02, material: m}
+time: {dt_rayleigh: 0.2, end: 0.002}
+output: {every_steps: 40, progress: false}
+)";
+  auto s = from_yaml(yaml);
+  const fs::path dir = fs::temp_directory_path() / "grains_test_vtk";
+  fs::remove_all(dir);
+  io::RunOptions opt;
+  opt.out_dir = dir;
+  opt.quiet = true;
+  const auto sum = io::run(s, opt);
+  ASSERT_TRUE(fs::exists(dir / "particles.pvd"));
+  ASSERT_TRUE(fs::exists(dir / "walls.pvd"));
+  ASSERT_TRUE(fs::exists(dir / "summary.json"));
+  // Every frame listed in the series exists and reads back.
+  std::ifstream pvd(dir / "particles.pvd");
+  std::stringstream ss;
+  ss << pvd.rdbuf();
+  const std::string text = ss.str();
+  std::size_t frames = 0, pos = 0;
+  while ((pos = text.find("file=\"", pos)) != std::string::npos) {
+    pos += 6;
+    const std::string f = text.substr(pos, text.find('"', pos) - pos);
+    ASSERT_TRUE(fs::exists(dir / f)) << f;
+    ++frames;
+  }
+  EXPECT_EQ(frames, sum.frames);
+  EXPECT_EQ(frames, static_cast<std::size_t>(s.scene.clock.n_steps / 40 + 1 + (s.scene.clock.n_steps % 40 ? 1 : 0)));
+  vtkNew<vtkXMLUnstructuredGridReader> r;
+  r->SetFileName((dir / "frames/particles_000000.vtu").c_str());
+  r->Update();
+  auto* grid = r->GetOutput();
+  ASSERT_EQ(grid->GetNumberOfPoints(), 40);
+  for (const char* name : {"id", "radius", "velocity", "force", "coordination", "material", "angular_velocity"})
+    EXPECT_NE(grid->GetPointData()->GetArray(name), nullptr) << name;
+  EXPECT_DOUBLE_EQ(grid->GetPointData()->GetArray("radius")->GetTuple1(0), 0.0005);
+  vtkNew<vtkXMLPolyDataReader> w;
+  w->SetFileName((dir / "frames/walls_000000.vtp").c_str());
+  w->Update();
+  EXPECT_EQ(w->GetOutput()->GetNumberOfCells(), 1 + 64);  // a plane quad and 64 cylinder facets
+  fs::remove_all(dir);
+}
+
+TEST(VtkOutput, UnwritableFolderIsAClearError) {
+  const std::string yaml = R"(
+domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}
+materials:
+  - {name: m, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3}
+particles:
+  - {material: m, radius: 0.0005, count: 5, placement: {type: random_fill, region: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}}}
+time: {dt_rayleigh: 0.2, end: 0.0001}
+)";
+  auto s = from_yaml(yaml);
+  io::RunOptions opt;
+  opt.out_dir = "/proc/grains_cannot_write_here";
+  opt.quiet = true;
+  try {
+    io::run(s, opt);
+    FAIL() << "expected an error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("/proc/grains_cannot_write_here"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace grains::test
