@@ -9,6 +9,8 @@
 
 namespace grains::io {
 
+void register_checkpoint_docs();  // io/checkpoint/checkpoint_docs.cpp
+
 using sim::EffectDoc;
 using sim::Vec3;
 
@@ -26,6 +28,7 @@ void register_io_docs() {
           sim::key("vtk", K::Bool, "write VTK frames").def("true"),
           sim::key("progress", K::Bool, "print a progress line to stderr (also -q)").def("true"),
           sim::key("progress_interval", K::Number, "wall-clock time between progress lines").def("2").si("s").in(0, inf)}});
+    register_checkpoint_docs();
     return true;
   }();
   (void)once;
@@ -58,6 +61,7 @@ class CaseParser {
     parse_time(root["time"]);
     parse_neighbor(root["neighbor"]);
     parse_output(root["output"]);
+    parse_checkpoint(root["checkpoint"]);
   }
 
  private:
@@ -429,6 +433,18 @@ class CaseParser {
     o.vtk = v_.boolean(n, d, "vtk", "output", true);
     o.progress = v_.boolean(n, d, "progress", "output", true);
     o.progress_interval = v_.number(n, d, "progress_interval", "output", 2.0);
+  }
+
+  void parse_checkpoint(const YAML::Node& n) {
+    if (!n) return;
+    const auto& d = doc("checkpoint");
+    if (!v_.check_map(n, d, "checkpoint")) return;
+    auto& k = c_.checkpoint;
+    if (n["every"] && n["every_steps"])
+      v_.error(n["every_steps"], "checkpoint", "give either every or every_steps, not both");
+    k.every = v_.number(n, d, "every", "checkpoint", 0);
+    k.every_steps = v_.integer(n, d, "every_steps", "checkpoint", 0);
+    k.keep = static_cast<int>(v_.integer(n, d, "keep", "checkpoint", 3));
   }
 
   Case& c_;

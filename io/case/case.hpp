@@ -18,6 +18,13 @@ struct OutputConfig {
   double progress_interval = 2.0;  // wall-clock seconds between progress lines
 };
 
+/// Periodic HDF5 checkpoints (io/checkpoint): cadence and retention.
+struct CheckpointConfig {
+  double every = 0;              // simulated seconds between checkpoints (0: use every_steps)
+  std::int64_t every_steps = 0;  // steps between checkpoints (0 and every = 0: only on signals and at the end)
+  int keep = 3;                  // newest checkpoints kept in OUTDIR/checkpoints
+};
+
 struct Case {
   std::string path;      // the case file (or a name for in-memory text)
   std::string base_dir;  // folder relative paths are resolved against
@@ -25,6 +32,7 @@ struct Case {
   YAML::Node root;       // after --set overrides
   sim::SceneConfig scene;
   OutputConfig output;
+  CheckpointConfig checkpoint;
 };
 
 /// Reads and validates a case file; `overrides` are "key.path=value" strings

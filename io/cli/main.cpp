@@ -1,6 +1,7 @@
 // The grains command line: run, check, docs and the tools built on the
 // library. Every user error ends in a message that says what was wrong,
 // where, and what is valid; exit status 2 for bad input, 1 for failures.
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -9,6 +10,7 @@
 
 #include "grains/version.hpp"
 #include "io/case/case.hpp"
+#include "io/checkpoint/checkpoint.hpp"
 #include "io/cli/commands.hpp"
 #include "io/output/progress.hpp"
 #include "io/run/simulation.hpp"
@@ -20,8 +22,11 @@ const char* kUsage =
     "\n"
     "usage:\n"
     "  grains run CASE.yaml [-o OUTDIR] [--set key.path=value ...] [-q]\n"
+    "             [--restart CHECKPOINT.h5 | --resume OUTDIR]\n"
     "      run a case; writes VTK frames (particles.pvd, walls.pvd) and summary.json to OUTDIR\n"
-    "      (default out/<case name>); progress on stderr unless -q\n"
+    "      (default out/<case name>); progress on stderr unless -q. --restart continues from a\n"
+    "      checkpoint, --resume from the newest valid one in OUTDIR/checkpoints (and writes to OUTDIR);\n"
+    "      SIGINT/SIGTERM stop the run with a checkpoint (exit status 128+signal)\n"
     "  grains check CASE.yaml [--set key.path=value ...]\n"
     "      validate a case and print the assembled step pipeline and per-particle fields\n"
     "  grains docs [EFFECT]\n"
@@ -41,6 +46,7 @@ struct RunArgs {
   std::string out;
   std::vector<std::string> sets;
   bool quiet = false;
+  std::string restart, resume;
 };
 
 // Parses the arguments shared by run and check; returns false on a usage error.
@@ -55,6 +61,12 @@ bool parse_run_args(const std::vector<std::string>& a, RunArgs& r, bool allow_ou
       r.sets.push_back(a[++i]);
     } else if (s.rfind("--set=", 0) == 0) {
       r.sets.push_back(s.substr(6));
+    } else if ((s == "--restart" || s == "--resume") && allow_out) {
+      if (i + 1 >= a.size())
+        return std::cerr << "grains: " << s << (s == "--restart" ? " needs a checkpoint file\n" : " needs a folder\n"), false;
+      (s == "--restart" ? r.restart : r.resume) = a[++i];
+      if (!r.restart.empty() && !r.resume.empty())
+        return std::cerr << "grains: give either --restart or --resume, not both\n", false;
     } else if ((s == "-q" || s == "--quiet") && allow_out) {
       r.quiet = true;
     } else if (!s.empty() && s[0] == '-') {
@@ -86,7 +98,27 @@ int cmd_run(const std::vector<std::string>& a, bool check_only) {
     if (r.out.empty() && std::filesystem::path(r.case_path).parent_path().filename().empty())
       opt.out_dir = std::filesystem::path("out") / std::filesystem::path(r.case_path).stem();
     opt.quiet = r.quiet;
+    opt.handle_signals = true;
+    if (!r.resume.empty()) {
+      if (r.out.empty()) opt.out_dir = r.resume;
+      std::vector<std::string> skipped;
+      opt.restart = grains::io::newest_valid_checkpoint(std::filesystem::path(r.resume) / "checkpoints", &skipped);
+      for (const auto& why : skipped) std::cerr << "grains: skipping " << why << "\n";
+      if (opt.restart.empty()) {
+        std::cerr << "grains: no valid checkpoint in '" << (std::filesystem::path(r.resume) / "checkpoints").string()
+                  << "' to resume from; run without --resume to start from the beginning\n";
+        return 2;
+      }
+    } else if (!r.restart.empty()) {
+      opt.restart = r.restart;
+    }
     const auto sum = grains::io::run(sim, opt);
+    if (sum.signal != 0) {
+      std::cerr << "grains: stopped by " << (sum.signal == SIGINT ? "SIGINT" : sum.signal == SIGTERM ? "SIGTERM" : "a signal")
+                << " at step " << sum.steps << " (t = " << sum.simulated_time << " s); checkpoint: " << sum.checkpoint
+                << "\nresume with: grains run " << r.case_path << " --resume " << opt.out_dir.string() << "\n";
+      return 128 + sum.signal;
+    }
     if (!r.quiet) {
       std::cout << "steps: " << sum.steps << "  simulated: " << sum.simulated_time << " s  wall: " << sum.wall_seconds
                 << " s  throughput: " << sum.particle_steps_per_second << " particle-steps/s\n"
@@ -100,6 +132,9 @@ int cmd_run(const std::vector<std::string>& a, bool check_only) {
     return 2;
   } catch (const grains::sim::SetupError& e) {
     std::cerr << e.what() << "\n";
+    return 2;
+  } catch (const grains::io::CheckpointError& e) {
+    std::cerr << "grains: " << e.what() << "\n";
     return 2;
   } catch (const grains::io::BlowUp& e) {
     std::cerr << "grains: " << e.what() << "\n";

@@ -1,5 +1,6 @@
 #include "io/output/progress.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -50,28 +51,57 @@ BlowUpCheck::BlowUpCheck(const sim::Scene& s, double rayleigh_time, std::int64_t
 
 void BlowUpCheck::run(sim::Scene& s) {
   if (s.clock.step % every_ != 0) return;
+  std::string d = diagnose(s);
+  if (d.empty()) return;
+  if (!last_good_.empty())
+    d += ". The last good checkpoint is " + last_good_ + " (written before the blow-up and kept)";
+  throw BlowUp(d);
+}
+
+std::string BlowUpCheck::diagnose(const sim::Scene& s) const {
   const auto& p = s.particles;
-  for (std::size_t i = 0; i < p.n_owned(); ++i) {
+  std::ostringstream o;
+  o.precision(4);
+  o << "blow-up at step " << s.clock.step << " (t = " << s.clock.time << " s): ";
+  bool bad = false;
+  for (std::size_t i = 0; i < p.n_owned() && !bad; ++i) {
     const bool finite = p.x[i].allFinite() && p.v[i].allFinite();
     const double speed = finite ? p.v[i].norm() : 0;
     if (finite && speed <= vmax_) continue;
-    std::ostringstream o;
-    o.precision(4);
-    o << "blow-up at step " << s.clock.step << " (t = " << s.clock.time << " s): particle id " << p.id[i]
-      << " (radius " << p.radius[i] << " m) has ";
+    bad = true;
+    o << "particle id " << p.id[i] << " (radius " << p.radius[i] << " m) has ";
     if (!finite)
       o << "a non-finite position or velocity";
     else
       o << "speed " << speed << " m/s, above the plausible bound " << vmax_ << " m/s";
-    o << ". Likely cause: ";
-    const double frac = s.clock.dt / rayleigh_;
-    if (frac > 0.3)
-      o << "the time step dt = " << s.clock.dt << " s is " << frac << " Rayleigh times; use time.dt_rayleigh: 0.2";
-    else
-      o << "overlapping initial positions, a wall placed through particles, or extreme material values "
-           "(check youngs_modulus and density)";
-    throw BlowUp(o.str());
   }
+  // Overlaps far beyond any elastic contact (list entries are pairs within the skin).
+  const auto& nl = s.neighbors;
+  const std::size_t rows = std::min(p.n_owned(), nl.row_start.empty() ? std::size_t{0} : nl.row_start.size() - 1);
+  for (std::size_t i = 0; i < rows && !bad; ++i)
+    for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
+      const auto j = nl.partner[k];
+      const double rmin = std::min(p.radius[i], p.radius[j]);
+      const double overlap = p.radius[i] + p.radius[j] - (p.x[i] - p.x[j]).norm();
+      if (!(overlap > 0.5 * rmin)) continue;
+      bad = true;
+      o << "particles id " << p.id[i] << " and id " << p.id[j] << " overlap by " << overlap << " m, "
+        << 100 * overlap / rmin << "% of the smaller radius";
+      break;
+    }
+  if (!bad) return {};
+  o << ". Likely cause: ";
+  const double frac = s.clock.dt / rayleigh_;
+  if (frac > 0.3)
+    o << "the time step dt = " << s.clock.dt << " s is " << frac
+      << " Rayleigh times; use time.dt_rayleigh: 0.2";
+  else if (s.clock.step <= every_)
+    o << "overlapping initial positions or a wall placed through particles (the state went bad within "
+      << s.clock.step << " steps of the start)";
+  else
+    o << "extreme or unsupported material values (check youngs_modulus, density and restitution) or "
+         "particles driven into each other by a moving wall";
+  return o.str();
 }
 
 }  // namespace grains::io

@@ -3,6 +3,7 @@
 // stderr, and a watchdog that stops a blown-up run with a diagnosis.
 #include <chrono>
 #include <ostream>
+#include <string>
 
 #include "sim/scene/stage.hpp"
 
@@ -34,15 +35,24 @@ struct BlowUp : std::runtime_error {
 
 /// Every `every` steps: positions and velocities finite, speeds below a bound
 /// (100 times the largest speed a particle could reach by falling through
-/// the domain or moving with the fastest wall, plus the initial speeds).
+/// the domain or moving with the fastest wall, plus the initial speeds), and
+/// no pair overlapping by more than half the smaller radius.
 class BlowUpCheck final : public sim::Stage {
  public:
   BlowUpCheck(const sim::Scene& s, double rayleigh_time, std::int64_t every = 200);
   std::string name() const override { return "check.blow_up(every " + std::to_string(every_) + " steps)"; }
   sim::Phase phase() const override { return sim::Phase::Output; }
   void run(sim::Scene& s) override;
+  /// The diagnosis of an unphysical state (non-finite or too fast particles,
+  /// particle pairs overlapping by more than half the smaller radius), or an
+  /// empty string when the state is sound. Checkpoint writers call it so that
+  /// they never replace a good checkpoint by a blown-up one.
+  std::string diagnose(const sim::Scene& s) const;
+  /// The newest checkpoint known good; the blow-up message points to it.
+  void set_last_good_checkpoint(std::string path) { last_good_ = std::move(path); }
 
  private:
+  std::string last_good_;
   double vmax_;
   double rayleigh_;
   std::int64_t every_;

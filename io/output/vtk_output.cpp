@@ -73,6 +73,21 @@ void VtkOutput::write_frame(const sim::Scene& s) {
   if (s.walls.count() > 0) write_pvd("walls.pvd", "walls_", ".vtp");
 }
 
+void VtkOutput::resume(const sim::Scene& s, std::vector<double> times, std::vector<std::int64_t> steps) {
+  times_ = std::move(times);
+  steps_ = std::move(steps);
+  last_step_ = steps_.empty() ? -1 : steps_.back();
+  std::error_code ec;
+  fs::create_directories(dir_ / "frames", ec);
+  if (ec) throw std::runtime_error("cannot create output folder '" + (dir_ / "frames").string() + "': " + ec.message());
+  if (last_step_ != s.clock.step && every_ > 0 && s.clock.step % every_ == 0) {
+    write_frame(s);
+  } else if (!times_.empty()) {
+    write_pvd("particles.pvd", "particles_", ".vtu");
+    if (s.walls.count() > 0) write_pvd("walls.pvd", "walls_", ".vtp");
+  }
+}
+
 namespace {
 
 vtkNew<vtkDoubleArray> vec_array(const char* name, const std::vector<Vec3>& v, std::size_t n) {

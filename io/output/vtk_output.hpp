@@ -27,6 +27,13 @@ class VtkOutput final : public sim::Stage {
   /// Writes a frame now (used for the initial state).
   void write_frame(const sim::Scene& s);
   std::size_t frames() const { return times_.size(); }
+  /// The series so far (time and step of each frame), for checkpoints.
+  const std::vector<double>& frame_times() const { return times_; }
+  const std::vector<std::int64_t>& frame_steps() const { return steps_; }
+  /// Continues a series after a restart: frames from a checkpoint; later
+  /// frames of an interrupted run are overwritten as the run reaches them.
+  /// Writes the frame of the current step if it is due and missing.
+  void resume(const sim::Scene& s, std::vector<double> times, std::vector<std::int64_t> steps);
 
  private:
   void write_particles(const sim::Scene& s, const std::filesystem::path& file) const;

@@ -1,12 +1,19 @@
 #include "io/run/simulation.hpp"
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
+#include <signal.h>
+
 #include "io/output/progress.hpp"
 #include "io/output/vtk_output.hpp"
+#include "io/run/checkpoint_stage.hpp"
 #include "grains/version.hpp"
 
 namespace grains::io {
@@ -26,32 +33,191 @@ std::int64_t frame_steps(const OutputConfig& o, double dt) {
   if (o.every > 0) return std::max<std::int64_t>(1, std::llround(o.every / dt));
   return 0;
 }
+
+std::int64_t checkpoint_steps(const CheckpointConfig& k, double dt) {
+  if (k.every_steps > 0) return k.every_steps;
+  if (k.every > 0) return std::max<std::int64_t>(1, std::llround(k.every / dt));
+  return 0;
+}
+
+volatile std::sig_atomic_t g_signal = 0;
+extern "C" void on_signal(int sig) { g_signal = sig; }
+
+// Installs the SIGINT/SIGTERM handlers for the duration of a run.
+class SignalGuard {
+ public:
+  explicit SignalGuard(bool on) : on_(on) {
+    g_signal = 0;
+    if (!on_) return;
+    struct sigaction sa {};
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART;
+    sigaction(SIGINT, &sa, &old_int_);
+    sigaction(SIGTERM, &sa, &old_term_);
+  }
+  ~SignalGuard() {
+    if (!on_) return;
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  SignalGuard(const SignalGuard&) = delete;
+  SignalGuard& operator=(const SignalGuard&) = delete;
+
+ private:
+  bool on_;
+  struct sigaction old_int_ {}, old_term_ {};
+};
+
+template <class T>
+T* find_stage(Simulation& s) {
+  for (const auto& st : s.pipeline.stages())
+    if (auto* p = dynamic_cast<T*>(st.get())) return p;
+  return nullptr;
+}
+
+std::string effective_case(const Case& c) {
+  YAML::Emitter e;
+  e << c.root;
+  return e.c_str();
+}
+
+std::filesystem::path emergency_dir(const RunOptions& opt) {
+  if (!opt.emergency_dir.empty()) return opt.emergency_dir;
+  if (const char* e = std::getenv("GRAINS_EMERGENCY_DIR"); e && *e) return e;
+  std::error_code ec;
+  auto t = std::filesystem::temp_directory_path(ec);
+  return (ec ? std::filesystem::path("/tmp") : t) / "grains-emergency";
+}
+
+// Saves the state after a signal or a failed output: into the checkpoint
+// folder, else into the emergency folder. Returns the file, or empty with
+// the reasons in `why`.
+std::filesystem::path save_somewhere(CheckpointStage& ck, Simulation& s, const RunOptions& opt, std::string& why) {
+  try {
+    return ck.save_now(s.scene);
+  } catch (const BlowUp&) {
+    throw;
+  } catch (const std::exception& e) {
+    why = e.what();
+  }
+  try {
+    return ck.save_to(s.scene, emergency_dir(opt));
+  } catch (const BlowUp&) {
+    throw;
+  } catch (const std::exception& e) {
+    why += "; " + std::string(e.what());
+  }
+  return {};
+}
+
+// Fails early, with a clear message, when the output folder cannot be written.
+void probe_output_dir(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw OutputFailure("cannot create the output folder '" + dir.string() + "': " + ec.message());
+  const auto probe = dir / ".grains-write-probe";
+  errno = 0;
+  {
+    std::ofstream o(probe);
+    o << "probe\n";
+    o.flush();
+    if (!o)
+      throw OutputFailure("the output folder '" + dir.string() + "' is not writable" +
+                          (errno ? std::string(": ") + std::strerror(errno) : std::string()) +
+                          "; choose another with -o");
+  }
+  std::filesystem::remove(probe, ec);
+}
+
 }  // namespace
 
 void add_output_stages(Simulation& s, const RunOptions& opt) {
   const auto& o = s.c.output;
-  s.pipeline.add(std::make_unique<BlowUpCheck>(s.scene, s.rayleigh_time));
-  if (o.vtk) s.pipeline.add(std::make_unique<VtkOutput>(opt.out_dir, frame_steps(o, s.scene.clock.dt)));
+  auto blow = std::make_unique<BlowUpCheck>(s.scene, s.rayleigh_time);
+  BlowUpCheck* blow_up = blow.get();
+  s.pipeline.add(std::move(blow));
+  VtkOutput* vtk = nullptr;
+  if (o.vtk) {
+    auto v = std::make_unique<VtkOutput>(opt.out_dir, frame_steps(o, s.scene.clock.dt));
+    vtk = v.get();
+    s.pipeline.add(std::move(v));
+  }
   if (o.progress && !opt.quiet) s.pipeline.add(std::make_unique<Progress>(*opt.log, o.progress_interval));
+  // Last of the output phase: a checkpoint holds the frames of its own step.
+  CheckpointExtras info{s.c.path, s.c.text, effective_case(s.c), {}, {}};
+  auto ck = std::make_unique<CheckpointStage>(opt.out_dir / "checkpoints",
+                                              checkpoint_steps(s.c.checkpoint, s.scene.clock.dt), s.c.checkpoint.keep,
+                                              std::move(info));
+  ck->attach(vtk, blow_up);
+  s.pipeline.add(std::move(ck));
 }
 
 RunSummary run(Simulation& s, const RunOptions& opt) {
-  std::filesystem::create_directories(opt.out_dir);
+  probe_output_dir(opt.out_dir);
   add_output_stages(s, opt);
   for (const auto& w : s.c.scene.warnings)
     if (!opt.quiet) *opt.log << w << "\n";
+  auto* vtk = find_stage<VtkOutput>(s);
+  auto* ck = find_stage<CheckpointStage>(s);
   RunSummary r;
-  r.particles_start = s.scene.particles.n_owned();
   const auto t0 = std::chrono::steady_clock::now();
-  s.pipeline.initialize(s.scene);
-  for (const auto& st : s.pipeline.stages())
-    if (auto* v = dynamic_cast<VtkOutput*>(st.get())) v->write_frame(s.scene);
-  double particle_steps = 0;
-  while (s.scene.clock.step < s.scene.clock.n_steps) {
-    particle_steps += static_cast<double>(s.scene.particles.n_owned());
-    s.pipeline.step(s.scene);
+  if (!opt.restart.empty()) {
+    const auto x = read_checkpoint(opt.restart, s.scene);
+    if (x.case_effective != effective_case(s.c) && !opt.quiet)
+      *opt.log << "note: the case differs from the one " << opt.restart.string()
+               << " was written with; continuing with the given case\n";
+    for (const auto& name : remove_checkpoints_after(ck->dir(), s.scene.clock.step))
+      if (!opt.quiet) *opt.log << "removed " << name << " (after the restart point)\n";
+    ck->restarted_from(opt.restart, s.scene.clock.step);
+    if (vtk) vtk->resume(s.scene, x.frame_times, x.frame_steps);
+    r.restarted_from = opt.restart.string();
+    if (!opt.quiet)
+      *opt.log << "restarting from " << opt.restart.string() << " at step " << s.scene.clock.step << " (t = "
+               << s.scene.clock.time << " s)\n";
+  } else {
+    s.pipeline.initialize(s.scene);
+    if (vtk) vtk->write_frame(s.scene);
   }
-  s.pipeline.finish(s.scene);
+  r.particles_start = s.scene.particles.n_owned();
+  double particle_steps = 0;
+  {
+    SignalGuard guard(opt.handle_signals);
+    try {
+      while (s.scene.clock.step < s.scene.clock.n_steps && g_signal == 0) {
+        particle_steps += static_cast<double>(s.scene.particles.n_owned());
+        s.pipeline.step(s.scene);
+      }
+      if (g_signal != 0) {
+        r.signal = g_signal;
+        std::string why;
+        const auto f = save_somewhere(*ck, s, opt, why);
+        if (f.empty()) throw OutputFailure("interrupted, and no checkpoint could be written: " + why);
+        r.checkpoint = f.string();
+      } else {
+        s.pipeline.finish(s.scene);
+      }
+    } catch (const BlowUp&) {
+      throw;
+    } catch (const OutputFailure&) {
+      throw;
+    } catch (const std::exception& e) {
+      // An output failed (disk full, folder gone): the physics of this step is
+      // complete, so its state is saved wherever it still fits.
+      std::string why;
+      const auto f = save_somewhere(*ck, s, opt, why);
+      std::ostringstream m;
+      m << e.what() << "\nthe run stopped at step " << s.scene.clock.step << " (t = " << s.scene.clock.time << " s); ";
+      if (f.empty())
+        m << "no checkpoint could be written (" << why << "); work since "
+          << (ck->last().empty() ? std::string("the start") : ck->last().string()) << " is lost";
+      else
+        m << "its state is saved in " << f.string() << "; once there is room, continue with: grains run " << s.c.path
+          << " --restart " << f.string() << " -o " << opt.out_dir.string();
+      throw OutputFailure(m.str());
+    }
+  }
+  if (r.checkpoint.empty() && !ck->last().empty()) r.checkpoint = ck->last().string();
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.steps = s.scene.clock.step;
   r.simulated_time = s.scene.clock.time;
@@ -59,8 +225,7 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
   r.particles_end = s.scene.particles.n_owned();
   r.lost_particles = s.scene.lost_particles;
   r.neighbor_builds = s.scene.neighbors.stats().builds;
-  for (const auto& st : s.pipeline.stages())
-    if (auto* v = dynamic_cast<VtkOutput*>(st.get())) r.frames = v->frames();
+  if (vtk) r.frames = vtk->frames();
 
   std::ofstream j(opt.out_dir / "summary.json");
   j.precision(10);
@@ -70,7 +235,11 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
     << "  \"particle_steps_per_second\": " << r.particle_steps_per_second << ",\n"
     << "  \"particles_start\": " << r.particles_start << ",\n  \"particles_end\": " << r.particles_end << ",\n"
     << "  \"lost_particles\": " << r.lost_particles << ",\n  \"neighbor_builds\": " << r.neighbor_builds << ",\n"
-    << "  \"frames\": " << r.frames << ",\n  \"stage_seconds\": {";
+    << "  \"frames\": " << r.frames << ",\n";
+  if (!r.restarted_from.empty()) j << "  \"restarted_from\": \"" << r.restarted_from << "\",\n";
+  if (r.signal != 0) j << "  \"interrupted_by_signal\": " << r.signal << ",\n";
+  if (!r.checkpoint.empty()) j << "  \"checkpoint\": \"" << r.checkpoint << "\",\n";
+  j << "  \"stage_seconds\": {";
   const auto names = s.pipeline.stage_names();
   for (std::size_t k = 0; k < names.size(); ++k)
     j << (k ? ", " : "") << "\n    \"" << names[k] << "\": " << s.pipeline.stage_seconds()[k];

@@ -25,6 +25,13 @@ struct RunOptions {
   std::filesystem::path out_dir = "out";
   bool quiet = false;
   std::ostream* log = &std::cerr;
+  /// Continue from this checkpoint instead of the case's initial state.
+  std::filesystem::path restart;
+  /// SIGINT/SIGTERM end the run after the current step with a checkpoint.
+  bool handle_signals = false;
+  /// Where a checkpoint goes when the output folder cannot take it
+  /// (empty: $GRAINS_EMERGENCY_DIR, else <temp>/grains-emergency).
+  std::filesystem::path emergency_dir;
 };
 
 struct RunSummary {
@@ -36,13 +43,24 @@ struct RunSummary {
   std::int64_t lost_particles = 0;
   long neighbor_builds = 0;
   std::size_t frames = 0;
+  int signal = 0;                  // the signal that interrupted the run, or 0
+  std::string checkpoint;          // the last checkpoint written (or restarted from)
+  std::string restarted_from;      // the checkpoint the run continued from
 };
 
-/// Adds the output stages, writes the initial frame, runs to the end time,
-/// writes summary.json into the output folder and returns the summary.
+/// Thrown when an output fails (disk full, folder not writable); the message
+/// says what failed and where the state was saved, if it could be.
+struct OutputFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Adds the output stages, writes the initial frame (or restores
+/// opt.restart), runs to the end time, writes summary.json into the output
+/// folder and returns the summary. A signal (opt.handle_signals) ends the
+/// run early with a checkpoint and summary.signal set.
 RunSummary run(Simulation& sim, const RunOptions& opt);
 
-/// Adds output stages (VTK, progress, blow-up check) as `run` does.
+/// Adds output stages (blow-up check, VTK, progress, checkpoints) as `run` does.
 void add_output_stages(Simulation& sim, const RunOptions& opt);
 
 /// Text for `grains check`: the stages in order and the per-particle fields.

@@ -116,13 +116,7 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   // Keep each row ordered by partner index: better locality, deterministic order.
   for (std::size_t i = 0; i < n; ++i) std::sort(partner.begin() + row_start[i], partner.begin() + row_start[i + 1]);
 
-  pair_constants.resize(partner.size());
-  for (std::size_t i = 0; i < n; ++i)
-    for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
-      const auto j = partner[k];
-      const double rs = p.radius[i] + p.radius[j];
-      pair_constants[k] = {rs * rs, p.radius[i] * p.radius[j] / rs, p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j])};
-    }
+  compute_pair_constants(p);
   history.assign(partner.size() * static_cast<std::size_t>(history_size_), 0.0);
   if (history_size_ > 0) carry_history(p);
 
@@ -150,6 +144,26 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   if (history_size_ > 0) old_row_id_.assign(p.id.begin(), p.id.begin() + static_cast<std::ptrdiff_t>(n));
   ++stats_.builds;
   stats_.pairs = partner.size();
+}
+
+void NeighborList::compute_pair_constants(const ParticleStore& p) {
+  const std::size_t rows = row_start.empty() ? 0 : row_start.size() - 1;
+  pair_constants.resize(partner.size());
+  for (std::size_t i = 0; i < rows; ++i)
+    for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
+      const auto j = partner[k];
+      const double rs = p.radius[i] + p.radius[j];
+      pair_constants[k] = {rs * rs, p.radius[i] * p.radius[j] / rs, p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j])};
+    }
+}
+
+void NeighborList::restore(const ParticleStore& p, BuildState b) {
+  build_time_ = b.time;
+  x_build_ = std::move(b.x);
+  old_row_id_ = std::move(b.row_id);
+  stats_.builds = b.builds;
+  stats_.pairs = partner.size();
+  compute_pair_constants(p);
 }
 
 void NeighborList::carry_history(const ParticleStore& p) {

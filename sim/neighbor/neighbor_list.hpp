@@ -55,8 +55,24 @@ class NeighborList {
 
   const Stats& stats() const { return stats_; }
 
+  /// What a build leaves besides the rows: the positions and time of the
+  /// build (the displacement trigger), the ids of the rows (to carry history
+  /// at the next build) and the build count. With row_start, partner, history
+  /// and the wall near lists, this is all an exact restart needs.
+  struct BuildState {
+    double time = 0;
+    std::vector<Vec3> x;
+    std::vector<std::int64_t> row_id;
+    long builds = 0;
+  };
+  BuildState build_state() const { return {build_time_, x_build_, old_row_id_, stats_.builds}; }
+  /// Restores a saved list: the public rows, history and near lists must be
+  /// assigned already; pair_constants are recomputed from the particles.
+  void restore(const ParticleStore& p, BuildState b);
+
  private:
   void carry_history(const ParticleStore& p);
+  void compute_pair_constants(const ParticleStore& p);
   int history_size_ = 0;
   double skin_ = 0;
   double build_time_ = 0;

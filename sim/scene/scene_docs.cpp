@@ -25,7 +25,8 @@ std::vector<EffectDoc> scene_docs() {
                 key("walls", K::List, "walls (see walls.plane, walls.cylinder)"),
                 key("time", K::Map, "time stepping (see time)").req(),
                 key("neighbor", K::Map, "neighbour lists (see neighbor)"),
-                key("output", K::Map, "output (see output)")}});
+                key("output", K::Map, "output (see output)"),
+                key("checkpoint", K::Map, "HDF5 checkpoints for restart (see checkpoint)")}});
   d.push_back({"domain", "domain: {...}",
                "The box particles live in; a particle that leaves it is removed and counted in the summary.",
                {key("min", K::Vec3, "lower corner").req().si("m"), key("max", K::Vec3, "upper corner").req().si("m")}});

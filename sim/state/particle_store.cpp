@@ -21,19 +21,6 @@ std::vector<std::string> ParticleStore::field_names() const {
   return n;
 }
 
-// Applies fn(vector&, width) to every allocated per-particle array; width is
-// the number of entries per particle.
-template <class Fn>
-void ParticleStore::for_each_field(Fn&& fn) {
-  fn(id, 1); fn(x, 1); fn(v, 1); fn(f, 1); fn(radius, 1); fn(mass, 1); fn(inv_mass, 1);
-  fn(material, 1); fn(shape, 1);
-  if (fields_.has(Field::AngularVelocity)) fn(omega, 1);
-  if (fields_.has(Field::Torque)) fn(torque, 1);
-  if (fields_.has(Field::Inertia)) fn(inertia, 1);
-  if (fields_.has(Field::Orientation)) fn(orientation, 1);
-  if (wall_history_size_ > 0) fn(wall_history, wall_history_size_);
-}
-
 std::size_t ParticleStore::add(std::int64_t gid, const Vec3& xi, const Vec3& vi, double r, double m,
                                int mat, int shp) {
   if (n_ghost() != 0) throw std::logic_error("ParticleStore::add with ghosts present");

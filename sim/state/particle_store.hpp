@@ -86,9 +86,27 @@ class ParticleStore {
   std::vector<Quat> orientation;
   std::vector<double> wall_history;  // size() * wall_history_size()
 
+  /// Applies fn(name, unit, vector&, width) to every allocated per-particle
+  /// array, core first; width is the number of entries per particle. This is
+  /// the one list of fields: permute, ghosts and checkpoints all go through
+  /// it, so a new field added here is carried everywhere.
+  template <class Fn>
+  void visit_fields(Fn&& fn) {
+    fn("id", "", id, 1); fn("position", "m", x, 1); fn("velocity", "m/s", v, 1); fn("force", "N", f, 1);
+    fn("radius", "m", radius, 1); fn("mass", "kg", mass, 1); fn("inv_mass", "1/kg", inv_mass, 1);
+    fn("material", "", material, 1); fn("shape", "", shape, 1);
+    if (fields_.has(Field::AngularVelocity)) fn("angular_velocity", "rad/s", omega, 1);
+    if (fields_.has(Field::Torque)) fn("torque", "N m", torque, 1);
+    if (fields_.has(Field::Inertia)) fn("inertia", "kg m^2", inertia, 1);
+    if (fields_.has(Field::Orientation)) fn("orientation", "", orientation, 1);
+    if (wall_history_size_ > 0) fn("wall_history", "m (tangential), N m (rolling)", wall_history, wall_history_size_);
+  }
+
  private:
   template <class Fn>
-  void for_each_field(Fn&& fn);
+  void for_each_field(Fn&& fn) {
+    visit_fields([&fn](const char*, const char*, auto& vec, int w) { fn(vec, w); });
+  }
   FieldSet fields_{};
   int wall_history_size_ = 0;
   std::size_t n_owned_ = 0;

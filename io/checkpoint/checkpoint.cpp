@@ -1,0 +1,260 @@
+#include "io/checkpoint/checkpoint.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "grains/version.hpp"
+#include "io/checkpoint/h5_file.hpp"
+
+namespace grains::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kFormat = "grains checkpoint";
+constexpr const char* kFormatVersion = "1";
+constexpr const char* kHistoryUnits = "m (tangential), N m (rolling)";
+
+void fsync_path(const fs::path& p, bool directory) {
+  const int fd = ::open(p.c_str(), directory ? O_RDONLY | O_DIRECTORY : O_RDONLY);
+  if (fd < 0) throw CheckpointError("cannot open '" + p.string() + "' to sync it: " + std::strerror(errno));
+  const int rc = ::fsync(fd);
+  const int e = errno;
+  ::close(fd);
+  if (rc != 0) throw CheckpointError("fsync of '" + p.string() + "' failed: " + std::strerror(e));
+}
+
+void write_particles(const h5::File& f, sim::ParticleStore& p) {
+  const std::size_t n = p.n_owned();
+  f.group("/particles");
+  f.attribute("/particles", "count", std::to_string(n));
+  p.visit_fields([&](const char* name, const char* unit, auto& vec, int width) {
+    using T = typename std::decay_t<decltype(vec)>::value_type;
+    const std::string ds = std::string("/particles/") + name;
+    const std::size_t cols = static_cast<std::size_t>(h5::Elem<T>::n) * static_cast<std::size_t>(width);
+    f.write_raw(ds, h5::Elem<T>::type(), vec.data(), n, cols, unit);  // owned rows only
+    if constexpr (std::is_same_v<T, sim::Quat>) f.attribute(ds, "components", "x y z w");
+  });
+}
+
+void write_neighbors(const h5::File& f, const sim::NeighborList& nl) {
+  f.group("/neighbor");
+  const auto b = nl.build_state();
+  f.write_vector("/neighbor/row_start", nl.row_start, 1, "");
+  f.write_vector("/neighbor/partner", nl.partner, 1, "");
+  const int H = nl.history_size();
+  f.write_raw("/neighbor/history", H5T_NATIVE_DOUBLE, nl.history.data(), H > 0 ? nl.history.size() / H : 0,
+              static_cast<std::size_t>(std::max(H, 1)), kHistoryUnits);
+  f.write_scalar("/neighbor/history_size", static_cast<std::int32_t>(H), "");
+  f.write_scalar("/neighbor/skin", nl.skin(), "m");
+  f.write_vector("/neighbor/build_position", b.x, 1, "m");
+  f.write_vector("/neighbor/build_row_id", b.row_id, 1, "");
+  f.write_scalar("/neighbor/build_time", b.time, "s");
+  f.write_scalar("/neighbor/builds", static_cast<std::int64_t>(b.builds), "");
+  f.group("/neighbor/plane_near");
+  for (std::size_t w = 0; w < nl.plane_near.size(); ++w)
+    f.write_vector("/neighbor/plane_near/" + std::to_string(w), nl.plane_near[w], 1, "");
+  f.group("/neighbor/cylinder_near");
+  for (std::size_t w = 0; w < nl.cylinder_near.size(); ++w)
+    f.write_vector("/neighbor/cylinder_near/" + std::to_string(w), nl.cylinder_near[w], 1, "");
+}
+
+void write_walls(const h5::File& f, const sim::Walls& walls) {
+  f.group("/walls");
+  std::vector<sim::Vec3> pt, nrm, vel;
+  for (const auto& w : walls.planes) pt.push_back(w.point), nrm.push_back(w.normal), vel.push_back(w.velocity);
+  f.write_vector("/walls/plane_point", pt, 1, "m");
+  f.write_vector("/walls/plane_normal", nrm, 1, "");
+  f.write_vector("/walls/plane_velocity", vel, 1, "m/s");
+  std::vector<sim::Vec3> base, axis, cvel;
+  std::vector<double> radius;
+  for (const auto& w : walls.cylinders)
+    base.push_back(w.surface.base), axis.push_back(w.surface.axis), cvel.push_back(w.velocity),
+        radius.push_back(w.surface.radius);
+  f.write_vector("/walls/cylinder_base", base, 1, "m");
+  f.write_vector("/walls/cylinder_axis", axis, 1, "");
+  f.write_vector("/walls/cylinder_radius", radius, 1, "m");
+  f.write_vector("/walls/cylinder_velocity", cvel, 1, "m/s");
+}
+
+}  // namespace
+
+void write_checkpoint(const fs::path& file, sim::Scene& s, const CheckpointExtras& x) {
+  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  std::string tmp_name(1, '.');  // hidden, so that listings never see it
+  tmp_name.append(file.filename().string()).append(".tmp");
+  const fs::path tmp = dir / tmp_name;
+  try {
+    auto f = h5::File::create(tmp.string());
+    f.attribute("/", "format", kFormat);
+    f.attribute("/", "format_version", kFormatVersion);
+    f.attribute("/", "grains_version", kVersion);
+    f.group("/clock");
+    f.write_scalar("/clock/time", s.clock.time, "s");
+    f.write_scalar("/clock/dt", s.clock.dt, "s");
+    f.write_scalar("/clock/end_time", s.clock.end_time, "s");
+    f.write_scalar("/clock/step", s.clock.step, "");
+    f.write_scalar("/clock/n_steps", s.clock.n_steps, "");
+    f.group("/case");
+    f.write_string("/case/path", x.case_path);
+    f.write_string("/case/text", x.case_text);
+    f.write_string("/case/effective", x.case_effective);
+    write_particles(f, s.particles);
+    write_neighbors(f, s.neighbors);
+    write_walls(f, s.walls);
+    f.group("/scene");
+    f.write_scalar("/scene/lost_particles", s.lost_particles, "");
+    f.group("/output");
+    f.write_vector("/output/vtk_frame_times", x.frame_times, 1, "s");
+    f.write_vector("/output/vtk_frame_steps", x.frame_steps, 1, "");
+    f.attribute("/", "complete", "yes");  // last: a reader refuses a file without it
+    f.close();
+    fsync_path(tmp, false);
+  } catch (const std::exception& e) {
+    std::error_code ec;
+    fs::remove(tmp, ec);  // do not leave a partial file behind (it may be what filled the disk)
+    throw CheckpointError(std::string("could not write checkpoint '") + file.string() + "': " + e.what());
+  }
+  std::error_code ec;
+  fs::rename(tmp, file, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw CheckpointError("could not write checkpoint '" + file.string() + "': rename failed: " + ec.message());
+  }
+  fsync_path(dir, true);
+}
+
+namespace {
+
+void check_format(const h5::File& f) {
+  if (f.read_attribute("/", "format") != kFormat) throw CheckpointError(f.path() + ": not a grains checkpoint");
+  const auto v = f.read_attribute("/", "format_version");
+  if (v != kFormatVersion)
+    throw CheckpointError(f.path() + ": checkpoint format version " + v + ", this grains reads version " +
+                          kFormatVersion);
+  if (f.read_attribute("/", "complete") != "yes") throw CheckpointError(f.path() + ": incomplete checkpoint");
+}
+
+std::size_t particle_count(const h5::File& f) { return std::stoull(f.read_attribute("/particles", "count")); }
+
+void read_particles(const h5::File& f, sim::ParticleStore& p) {
+  const std::size_t n = particle_count(f);
+  // Resize through the public interface: empty the store, then add n
+  // placeholders, which allocates every configured field; all are overwritten.
+  p.remove_if(std::vector<char>(p.n_owned(), 1));
+  for (std::size_t i = 0; i < n; ++i) p.add(0, sim::Vec3::Zero(), sim::Vec3::Zero(), 1.0, 1.0, 0, 0);
+  std::vector<std::string> seen;
+  p.visit_fields([&](const char* name, const char*, auto& vec, int width) {
+    const std::string ds = std::string("/particles/") + name;
+    if (!f.exists(ds))
+      throw CheckpointError(f.path() + ": has no particle field '" + name +
+                            "', which this case needs: the checkpoint was written for a different case");
+    f.read_vector(ds, vec, n, width);
+    seen.emplace_back(name);
+  });
+  for (const auto& c : f.children("/particles"))
+    if (std::find(seen.begin(), seen.end(), c) == seen.end())
+      throw CheckpointError(f.path() + ": has particle field '" + c +
+                            "', which this case does not use: the checkpoint was written for a different case");
+}
+
+void read_neighbors(const h5::File& f, sim::Scene& s) {
+  auto& nl = s.neighbors;
+  const std::size_t n = s.particles.n_owned();
+  const int H = f.read_scalar<std::int32_t>("/neighbor/history_size");
+  if (H != nl.history_size())
+    throw CheckpointError(f.path() + ": contact history of " + std::to_string(H) + " doubles per contact, the case's " +
+                          "contact law keeps " + std::to_string(nl.history_size()) +
+                          ": the checkpoint was written for different contact-law slots");
+  if (f.read_scalar<double>("/neighbor/skin") != nl.skin())
+    throw CheckpointError(f.path() + ": the neighbour skin differs from the case's (neighbor.skin must not change)");
+  f.read_vector("/neighbor/row_start", nl.row_start, f.shape("/neighbor/row_start").first, 1);
+  const std::size_t m = f.shape("/neighbor/partner").first;
+  f.read_vector("/neighbor/partner", nl.partner, m, 1);
+  nl.history.resize(m * static_cast<std::size_t>(H));
+  f.read_raw("/neighbor/history", H5T_NATIVE_DOUBLE, nl.history.data(), H > 0 ? m : 0,
+             static_cast<std::size_t>(std::max(H, 1)));
+  bool ok = nl.row_start.size() == n + 1 && nl.row_start.front() == 0 && nl.row_start.back() == m;
+  for (std::size_t i = 0; ok && i < n; ++i) ok = nl.row_start[i] <= nl.row_start[i + 1];
+  for (std::size_t k = 0; ok && k < m; ++k) ok = nl.partner[k] < n;
+  if (!ok) throw CheckpointError(f.path() + ": the neighbour list does not fit the particles (corrupt checkpoint)");
+  sim::NeighborList::BuildState b;
+  f.read_vector("/neighbor/build_position", b.x, f.shape("/neighbor/build_position").first, 1);
+  f.read_vector("/neighbor/build_row_id", b.row_id, f.shape("/neighbor/build_row_id").first, 1);
+  b.time = f.read_scalar<double>("/neighbor/build_time");
+  b.builds = static_cast<long>(f.read_scalar<std::int64_t>("/neighbor/builds"));
+  auto near = [&](const std::string& g, std::vector<std::vector<std::uint32_t>>& lists, std::size_t walls) {
+    lists.assign(walls, {});
+    for (std::size_t w = 0; w < walls; ++w) {
+      const std::string ds = g + "/" + std::to_string(w);
+      f.read_vector(ds, lists[w], f.shape(ds).first, 1);
+      for (auto i : lists[w])
+        if (i >= n) throw CheckpointError(f.path() + ": wall near list out of range (corrupt checkpoint)");
+    }
+  };
+  near("/neighbor/plane_near", nl.plane_near, s.walls.planes.size());
+  near("/neighbor/cylinder_near", nl.cylinder_near, s.walls.cylinders.size());
+  nl.restore(s.particles, std::move(b));
+}
+
+void read_walls(const h5::File& f, sim::Walls& walls) {
+  std::vector<sim::Vec3> pt, base;
+  const std::size_t np = f.shape("/walls/plane_point").first, nc = f.shape("/walls/cylinder_base").first;
+  if (np != walls.planes.size() || nc != walls.cylinders.size())
+    throw CheckpointError(f.path() + ": " + std::to_string(np) + " plane and " + std::to_string(nc) +
+                          " cylinder walls, the case has " + std::to_string(walls.planes.size()) + " and " +
+                          std::to_string(walls.cylinders.size()));
+  f.read_vector("/walls/plane_point", pt, np, 1);
+  f.read_vector("/walls/cylinder_base", base, nc, 1);
+  for (std::size_t w = 0; w < np; ++w) walls.planes[w].point = pt[w];
+  for (std::size_t w = 0; w < nc; ++w) walls.cylinders[w].surface.base = base[w];
+}
+
+}  // namespace
+
+CheckpointExtras read_checkpoint(const fs::path& file, sim::Scene& s) {
+  try {
+    const auto f = h5::File::open_read(file.string());
+    check_format(f);
+    const double dt = f.read_scalar<double>("/clock/dt");
+    if (dt != s.clock.dt)
+      throw CheckpointError(file.string() + ": written with time step dt = " + std::to_string(dt) +
+                            " s, the case gives dt = " + std::to_string(s.clock.dt) +
+                            " s; a restart keeps the time step");
+    const auto step = f.read_scalar<std::int64_t>("/clock/step");
+    if (step > s.clock.n_steps)
+      throw CheckpointError(file.string() + ": written at step " + std::to_string(step) + ", after the case's end (" +
+                            std::to_string(s.clock.n_steps) + " steps); raise time.end to continue from it");
+    read_walls(f, s.walls);
+    read_particles(f, s.particles);
+    read_neighbors(f, s);
+    s.clock.step = step;
+    s.clock.time = f.read_scalar<double>("/clock/time");
+    s.lost_particles = f.read_scalar<std::int64_t>("/scene/lost_particles");
+    CheckpointExtras x;
+    x.case_path = f.read_string("/case/path");
+    x.case_text = f.read_string("/case/text");
+    x.case_effective = f.read_string("/case/effective");
+    f.read_vector("/output/vtk_frame_times", x.frame_times, f.shape("/output/vtk_frame_times").first, 1);
+    f.read_vector("/output/vtk_frame_steps", x.frame_steps, f.shape("/output/vtk_frame_steps").first, 1);
+    return x;
+  } catch (const h5::H5Error& e) {
+    throw CheckpointError(e.what());
+  }
+}
+
+CheckpointInfo checkpoint_info(const fs::path& file) {
+  try {
+    const auto f = h5::File::open_read(file.string());
+    check_format(f);
+    return {f.read_scalar<std::int64_t>("/clock/step"), f.read_scalar<double>("/clock/time"), particle_count(f)};
+  } catch (const h5::H5Error& e) {
+    throw CheckpointError(e.what());
+  }
+}
+
+}  // namespace grains::io

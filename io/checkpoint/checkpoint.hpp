@@ -1,0 +1,75 @@
+#pragma once
+// HDF5 checkpoints: the full state of a run, enough for a bitwise-exact
+// continuation (layout in docs/checkpoint.md).
+//
+// What is saved: every allocated per-particle field (generically, through
+// ParticleStore::visit_fields), the neighbour list with its contact history
+// and build state (so that the continued run builds its lists at exactly
+// the same steps and sums forces in exactly the same order), the moving wall
+// states, the clock, the lost-particle count, the case (text as read and the
+// effective YAML after --set) and the VTK series written so far. The run
+// loop draws no random numbers, so there is no generator state to save.
+//
+// Files are written atomically: a hidden temporary in the same folder,
+// flushed and fsync'ed, renamed over the final name, and the folder fsync'ed.
+// A crash at any moment leaves either the previous checkpoint set or the new
+// one, never a partial file under a checkpoint name.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "sim/scene/scene.hpp"
+
+namespace grains::io {
+
+/// Everything saved besides the scene.
+struct CheckpointExtras {
+  std::string case_path;       // the case file the run was started from
+  std::string case_text;       // as read
+  std::string case_effective;  // YAML after --set overrides
+  std::vector<double> frame_times;        // VTK series so far (s)
+  std::vector<std::int64_t> frame_steps;
+};
+
+/// Thrown for a checkpoint that cannot be written or read, or that does not
+/// fit the case it is restarted with.
+struct CheckpointError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Writes the scene (owned particles only) to `file` atomically.
+void write_checkpoint(const std::filesystem::path& file, sim::Scene& s, const CheckpointExtras& extras);
+
+/// Restores a checkpoint into a scene built from the same case (same
+/// fields, law slots, walls and time step): particles, neighbour list,
+/// history, walls, clock. The case's end time may differ (a run can be
+/// extended). Throws CheckpointError saying what does not fit.
+CheckpointExtras read_checkpoint(const std::filesystem::path& file, sim::Scene& s);
+
+/// Step and time of a checkpoint without reading the state; throws when the
+/// file is not a complete grains checkpoint.
+struct CheckpointInfo {
+  std::int64_t step = 0;
+  double time = 0;
+  std::size_t particles = 0;
+};
+CheckpointInfo checkpoint_info(const std::filesystem::path& file);
+
+// ---- files in a checkpoint folder ----
+
+/// "checkpoint_000000012000.h5" for step 12000.
+std::string checkpoint_name(std::int64_t step);
+/// Checkpoints in `dir` by step, oldest first (names only; not validated).
+std::vector<std::filesystem::path> list_checkpoints(const std::filesystem::path& dir);
+/// The newest checkpoint in `dir` that opens and is complete; empty when
+/// none. Invalid ones are reported in `skipped` (path: reason).
+std::filesystem::path newest_valid_checkpoint(const std::filesystem::path& dir,
+                                              std::vector<std::string>* skipped = nullptr);
+/// Removes all but the newest `keep` checkpoints, and leftover temporaries.
+void prune_checkpoints(const std::filesystem::path& dir, int keep);
+/// Removes checkpoints of steps after `step` (a restart from an older one
+/// makes them a stale future); returns the removed names.
+std::vector<std::string> remove_checkpoints_after(const std::filesystem::path& dir, std::int64_t step);
+
+}  // namespace grains::io

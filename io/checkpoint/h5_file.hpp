@@ -1,0 +1,141 @@
+#pragma once
+#include <array>
+// A thin layer over the HDF5 C API for checkpoints: owning handles, and
+// datasets written with their units as an attribute. Every failure throws
+// H5Error naming the file and the object; HDF5's own error printing is off.
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <hdf5.h>
+
+namespace grains::io::h5 {
+
+struct H5Error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// An owning hid_t with the matching close function.
+class Handle {
+ public:
+  Handle() = default;
+  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
+  Handle(Handle&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = H5I_INVALID_HID; }
+  Handle& operator=(Handle&& o) noexcept {
+    if (this != &o) {
+      reset();
+      id_ = o.id_;
+      close_ = o.close_;
+      o.id_ = H5I_INVALID_HID;
+    }
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() { reset(); }
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+  /// Closes now; returns false when the close failed (e.g. the final flush).
+  bool reset();
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+  herr_t (*close_)(hid_t) = nullptr;
+};
+
+/// Element type of a per-particle array as HDF5 sees it: a native scalar and
+/// the number of scalars per element (Eigen fixed-size vectors, matrices and
+/// quaternions are stored as rows of their coefficients).
+template <class T, class = void>
+struct Elem;
+template <>
+struct Elem<double> { static hid_t type() { return H5T_NATIVE_DOUBLE; } static constexpr int n = 1; using S = double; };
+template <>
+struct Elem<std::int32_t> { static hid_t type() { return H5T_NATIVE_INT32; } static constexpr int n = 1; using S = std::int32_t; };
+template <>
+struct Elem<std::int64_t> { static hid_t type() { return H5T_NATIVE_INT64; } static constexpr int n = 1; using S = std::int64_t; };
+template <>
+struct Elem<std::uint32_t> { static hid_t type() { return H5T_NATIVE_UINT32; } static constexpr int n = 1; using S = std::uint32_t; };
+template <class T>
+struct Elem<T, std::enable_if_t<std::is_base_of_v<Eigen::MatrixBase<T>, T> && T::SizeAtCompileTime != Eigen::Dynamic>> {
+  using S = typename T::Scalar;
+  static hid_t type() { return Elem<S>::type(); }
+  static constexpr int n = static_cast<int>(T::SizeAtCompileTime);
+  static_assert(sizeof(T) == sizeof(S) * n, "checkpoint: Eigen type with padding");
+};
+template <class T, std::size_t N>
+struct Elem<std::array<T, N>> {  // packed rows, e.g. a symmetric matrix's upper triangle
+  using S = typename Elem<T>::S;
+  static hid_t type() { return Elem<T>::type(); }
+  static constexpr int n = static_cast<int>(N) * Elem<T>::n;
+  static_assert(sizeof(std::array<T, N>) == sizeof(T) * N, "checkpoint: array with padding");
+};
+template <class Q>
+struct Elem<Eigen::Quaternion<Q>> {  // coefficient order x, y, z, w
+  using S = Q;
+  static hid_t type() { return Elem<Q>::type(); }
+  static constexpr int n = 4;
+  static_assert(sizeof(Eigen::Quaternion<Q>) == sizeof(Q) * 4, "checkpoint: quaternion with padding");
+};
+
+class File {
+ public:
+  static File create(const std::string& path);  // truncates
+  static File open_read(const std::string& path);
+  const std::string& path() const { return path_; }
+  hid_t id() const { return h_.get(); }
+  /// Flushes and closes; throws when HDF5 could not complete the file.
+  void close();
+
+  void group(const std::string& name) const;
+  bool exists(const std::string& name) const;
+  /// Names of the links directly under a group.
+  std::vector<std::string> children(const std::string& group) const;
+
+  /// rows x cols array of a native scalar type (cols == 1: a 1-D dataset).
+  void write_raw(const std::string& name, hid_t type, const void* data, std::size_t rows, std::size_t cols,
+                 const std::string& unit) const;
+  /// Reads a dataset that must have exactly rows x cols elements of `type`.
+  void read_raw(const std::string& name, hid_t type, void* data, std::size_t rows, std::size_t cols) const;
+  /// Shape of a dataset: {rows, cols}; cols is 1 for 1-D datasets.
+  std::pair<std::size_t, std::size_t> shape(const std::string& name) const;
+
+  template <class T>
+  void write_vector(const std::string& name, const std::vector<T>& v, int width, const std::string& unit) const {
+    const std::size_t cols = static_cast<std::size_t>(Elem<T>::n) * static_cast<std::size_t>(width);
+    write_raw(name, Elem<T>::type(), v.data(), width > 0 ? v.size() / static_cast<std::size_t>(width) : 0, cols, unit);
+  }
+  /// Reads into v, resized to rows * width elements.
+  template <class T>
+  void read_vector(const std::string& name, std::vector<T>& v, std::size_t rows, int width) const {
+    v.resize(rows * static_cast<std::size_t>(width));
+    read_raw(name, Elem<T>::type(), v.data(), rows, static_cast<std::size_t>(Elem<T>::n) * static_cast<std::size_t>(width));
+  }
+  template <class T>
+  void write_scalar(const std::string& name, const T& x, const std::string& unit) const {
+    write_raw(name, Elem<T>::type(), &x, 1, 1, unit);
+  }
+  template <class T>
+  T read_scalar(const std::string& name) const {
+    T x{};
+    read_raw(name, Elem<T>::type(), &x, 1, 1);
+    return x;
+  }
+  void write_string(const std::string& name, const std::string& s) const;
+  std::string read_string(const std::string& name) const;
+  /// String attribute on an object ("/" for the file).
+  void attribute(const std::string& object, const std::string& key, const std::string& value) const;
+  std::string read_attribute(const std::string& object, const std::string& key) const;
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const;
+  std::string path_;
+  Handle h_;
+};
+
+}  // namespace grains::io::h5

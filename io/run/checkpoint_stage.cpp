@@ -1,0 +1,67 @@
+#include "io/run/checkpoint_stage.hpp"
+
+#include "io/output/progress.hpp"
+#include "io/output/vtk_output.hpp"
+
+namespace grains::io {
+
+namespace fs = std::filesystem;
+
+CheckpointStage::CheckpointStage(fs::path dir, std::int64_t every_steps, int keep, CheckpointExtras case_info)
+    : dir_(std::move(dir)), every_(every_steps), keep_(keep), case_info_(std::move(case_info)) {}
+
+std::string CheckpointStage::name() const {
+  return "output.checkpoint(" +
+         (every_ > 0 ? "every " + std::to_string(every_) + " steps, keep " + std::to_string(keep_)
+                     : std::string("on signals only")) +
+         ")";
+}
+
+void CheckpointStage::run(sim::Scene& s) {
+  if (every_ > 0 && s.clock.step % every_ == 0) save_now(s);
+}
+
+void CheckpointStage::finish(sim::Scene& s) {
+  if (every_ > 0) save_now(s);
+}
+
+void CheckpointStage::restarted_from(const fs::path& file, std::int64_t step) {
+  last_ = file;
+  last_step_ = step;
+  if (blow_up_) blow_up_->set_last_good_checkpoint(file.string());
+}
+
+CheckpointExtras CheckpointStage::extras() const {
+  CheckpointExtras x = case_info_;
+  if (vtk_) {
+    x.frame_times = vtk_->frame_times();
+    x.frame_steps = vtk_->frame_steps();
+  }
+  return x;
+}
+
+fs::path CheckpointStage::save_to(sim::Scene& s, const fs::path& dir) {
+  if (blow_up_) {
+    const std::string bad = blow_up_->diagnose(s);
+    if (!bad.empty())
+      throw BlowUp(bad + (last_.empty() ? std::string(". No checkpoint was written before it")
+                                        : ". The last good checkpoint is " + last_.string() + " (kept)"));
+  }
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw CheckpointError("cannot create checkpoint folder '" + dir.string() + "': " + ec.message());
+  const fs::path file = dir / checkpoint_name(s.clock.step);
+  write_checkpoint(file, s, extras());
+  return file;
+}
+
+fs::path CheckpointStage::save_now(sim::Scene& s) {
+  if (last_step_ == s.clock.step && !last_.empty() && fs::exists(last_)) return last_;
+  last_ = save_to(s, dir_);
+  last_step_ = s.clock.step;
+  if (blow_up_) blow_up_->set_last_good_checkpoint(last_.string());
+  prune_checkpoints(dir_, keep_);
+  return last_;
+}
+
+}  // namespace grains::io
