@@ -314,6 +314,50 @@ class CaseParser {
     if (pl.positions.empty()) v_.error(at, ctx, "positions file '" + path.string() + "' holds no positions");
   }
 
+  void parse_shape(const YAML::Node& n, sim::ParticleSetConfig& p, const std::string& ctx) {
+    const auto& d = doc("particles.shape");
+    if (!v_.check_map(n, d, ctx)) return;
+    auto& sh = p.shape;
+    if (v_.string(n, d, "type", ctx, "sphere") != "ellipsoid") return;
+    sh.kind = sim::ShapeConfig::Kind::Ellipsoid;
+    if (n["aspect_ratio"] && n["semi_axes"]) {
+      v_.error(n["semi_axes"], ctx, "give either aspect_ratio or semi_axes, not both");
+    } else if (n["aspect_ratio"]) {
+      const double a = v_.number(n, d, "aspect_ratio", ctx, 1);
+      const Vec3 axes(std::cbrt(a * a), 1 / std::cbrt(a), 1 / std::cbrt(a));  // volume of the unit sphere
+      sh.bounding_factor = axes.maxCoeff();
+      sh.axes_rel = axes / sh.bounding_factor;
+    } else if (n["semi_axes"]) {
+      const Vec3 axes = v_.vec3(n, d, "semi_axes", ctx, Vec3(1, 1, 1));
+      if ((axes.array() <= 0).any()) {
+        v_.error(n["semi_axes"], ctx, "semi_axes must all be > 0");
+      } else {
+        sh.axes_rel = axes / axes.maxCoeff();
+        if (sh.axes_rel.minCoeff() < 1e-3)
+          v_.error(n["semi_axes"], ctx, "aspect ratios above 1000 are not supported (PW85 accuracy); valid: max/min <= 1000");
+      }
+    } else {
+      v_.error(n, ctx, "an ellipsoid needs aspect_ratio or semi_axes");
+    }
+    const YAML::Node o = n["orientation"];
+    if (!o) return;
+    if (o.IsScalar() && o.Scalar() == "random") return;
+    if (o.IsSequence() && o.size() == 4) {
+      double q[4];
+      for (int k = 0; k < 4; ++k)
+        if (!v_.to_number(o[k], ctx, "orientation[" + std::to_string(k) + "]", q[k])) return;
+      sim::Quat qq(q[0], q[1], q[2], q[3]);
+      if (qq.norm() == 0) {
+        v_.error(o, ctx, "orientation quaternion must not be zero");
+        return;
+      }
+      sh.orientation = qq.normalized();
+      sh.random_orientation = false;
+      return;
+    }
+    v_.error(o, ctx, "orientation must be 'random' or a quaternion [w, x, y, z]");
+  }
+
   void parse_particles(const YAML::Node& n) {
     if (!n) return;
     if (!n.IsSequence() || n.size() == 0) {
@@ -332,6 +376,7 @@ class CaseParser {
       parse_radius(s, p, ctx);
       p.count = v_.integer(s, d, "count", ctx, 0);
       p.velocity = v_.vec3(s, d, "velocity", ctx);
+      if (s["shape"]) parse_shape(s["shape"], p, ctx + ".shape");
       if (s["placement"]) parse_placement(s["placement"], p, ctx);
       if (p.placement.kind == sim::Placement::Kind::RandomFill && s["placement"] && !s["count"])
         v_.error(s, ctx, "random_fill needs 'count' (the number of particles to place)");

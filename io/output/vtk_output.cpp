@@ -146,6 +146,26 @@ void VtkOutput::write_particles(const sim::Scene& s, const fs::path& file) const
   pd->AddArray(vec_array("velocity", p.v, n));
   pd->AddArray(vec_array("force", p.f, n));
   if (p.fields().has(sim::Field::AngularVelocity)) pd->AddArray(vec_array("angular_velocity", p.omega, n));
+  if (p.fields().has(sim::Field::Orientation) && p.fields().has(sim::Field::SemiAxes)) {
+    // Orientation as a quaternion (w, x, y, z), the semi-axes, and the shape
+    // tensor R diag(a, b, c) R^T that ParaView's Tensor Glyph draws as the ellipsoid.
+    vtkNew<vtkDoubleArray> q, t;
+    q->SetName("orientation");
+    q->SetNumberOfComponents(4);
+    t->SetName("shape_tensor");
+    t->SetNumberOfComponents(9);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& o = p.orientation[i];
+      const double qv[4] = {o.w(), o.x(), o.y(), o.z()};
+      q->InsertNextTuple(qv);
+      const Eigen::Matrix3d R = o.toRotationMatrix();
+      const Eigen::Matrix3d T = R * p.semi_axes[i].asDiagonal() * R.transpose();
+      t->InsertNextTuple(T.data());
+    }
+    pd->AddArray(q);
+    pd->AddArray(vec_array("semi_axes", p.semi_axes, n));
+    pd->AddArray(t);
+  }
   pd->SetActiveScalars("radius");
   vtkNew<vtkXMLUnstructuredGridWriter> w;
   w->SetInputData(grid);

@@ -1,7 +1,9 @@
 // Assembles the step pipeline from what the scene needs. The law slots are
 // chosen here once, at run time, and each choice is a separate template
 // instantiation, so the per-contact kernels carry no flags.
+#include "sim/integrate/rigid_body.hpp"
 #include "sim/integrate/verlet.hpp"
+#include "sim/laws/ellipsoid_pair_stage.hpp"
 #include "sim/laws/pair_contact_stage.hpp"
 #include "sim/neighbor/neighbor_stage.hpp"
 #include "sim/scene/body_forces.hpp"
@@ -14,6 +16,12 @@ namespace {
 
 template <class Law>
 void add_contact_stages(Pipeline& p, const SceneNeeds& n) {
+  if (n.ellipsoids) {
+    p.add(std::make_unique<ShapePairContactStage<Law>>());
+    if (n.planes) p.add(std::make_unique<PlaneWallStage<Law, true>>());
+    if (n.cylinders) p.add(std::make_unique<CylinderWallStage<Law, true>>());
+    return;
+  }
   p.add(std::make_unique<PairContactStage<Law>>());
   if (n.planes) p.add(std::make_unique<PlaneWallStage<Law>>());
   if (n.cylinders) p.add(std::make_unique<CylinderWallStage<Law>>());
@@ -47,10 +55,15 @@ void add_integrator(Pipeline& p) {
 Pipeline assemble_pipeline(const Scene& s, const SceneConfig& c) {
   const SceneNeeds n = scene_needs(c, s.pairs);
   Pipeline p;
-  if (n.rotation)
+  if (n.ellipsoids) {
+    p.add(std::make_unique<RigidBodyDrift>());
+    p.add(std::make_unique<ClearForces<true>>());
+    p.add(std::make_unique<RigidBodyKick>());
+  } else if (n.rotation) {
     add_integrator<true>(p);
-  else
+  } else {
     add_integrator<false>(p);
+  }
   if (n.moving_walls) p.add(std::make_unique<MoveWalls>());
   p.add(std::make_unique<NeighborStage>(c.sort_particles));
   if (n.gravity) p.add(std::make_unique<Gravity>());

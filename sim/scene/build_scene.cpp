@@ -1,13 +1,22 @@
 #include "sim/scene/build_scene.hpp"
 
 #include <cmath>
+#include <random>
 #include <sstream>
 
+#include "contact/ellipsoid/ellipsoid.hpp"
 #include "sim/scene/placement.hpp"
 
 namespace grains::sim {
 
 namespace {
+// Uniformly distributed rotation (Shoemake's method).
+Quat random_orientation(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double u1 = u(rng), u2 = 2 * M_PI * u(rng), u3 = 2 * M_PI * u(rng);
+  const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
+  return Quat(a * std::sin(u2), a * std::cos(u2), b * std::sin(u3), b * std::cos(u3)).normalized();
+}
 bool choose(SlotChoice c, bool automatic) { return c == SlotChoice::Auto ? automatic : c == SlotChoice::On; }
 }  // namespace
 
@@ -16,7 +25,8 @@ SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs) {
   n.tangential = choose(c.tangential, pairs.any_friction());
   n.rolling = choose(c.rolling, pairs.any_rolling());
   n.cohesion = choose(c.cohesion, pairs.any_cohesion());
-  n.rotation = n.tangential || n.rolling;
+  for (const auto& s : c.sets) n.ellipsoids = n.ellipsoids || s.shape.kind == ShapeConfig::Kind::Ellipsoid;
+  n.rotation = n.tangential || n.rolling || n.ellipsoids;
   n.gravity = c.gravity.squaredNorm() > 0;
   n.planes = !c.walls.planes.empty();
   n.cylinders = !c.walls.cylinders.empty();
@@ -24,6 +34,8 @@ SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs) {
   n.history_size = (n.tangential ? 3 : 0) + (n.rolling ? 3 : 0);
   if (n.rotation) n.fields |= FieldSet(Field::AngularVelocity) | Field::Torque | Field::Inertia;
   if (n.history_size > 0 && c.walls.count() > 0) n.fields |= Field::WallHistory;
+  if (n.ellipsoids)
+    n.fields |= FieldSet(Field::Orientation) | Field::AngularMomentum | Field::SemiAxes | Field::ShapeForm;
   return n;
 }
 
@@ -31,8 +43,9 @@ double rayleigh_time(const SceneConfig& c) {
   double t = std::numeric_limits<double>::infinity();
   for (const auto& s : c.sets) {
     const Material& m = c.materials[s.material];
-    const double r = s.placement.radii.empty() ? s.size.smallest()
-                                               : *std::min_element(s.placement.radii.begin(), s.placement.radii.end());
+    double r = s.placement.radii.empty() ? s.size.smallest()
+                                         : *std::min_element(s.placement.radii.begin(), s.placement.radii.end());
+    r *= s.shape.bounding_factor * s.shape.axes_rel.minCoeff();  // the smallest semi-axis
     const double tr = M_PI * r * std::sqrt(m.density / m.shear_modulus()) / (0.1631 * m.poisson_ratio + 0.8766);
     t = std::min(t, tr);
   }
@@ -82,21 +95,41 @@ Scene build_scene(SceneConfig& c) {
   const auto placed = place_particles(c);
   check_overlaps(c, placed);
   std::int64_t gid = 0;
+  std::vector<std::mt19937_64> orient_rng;
+  for (const auto& set : c.sets) orient_rng.emplace_back(set.placement.seed ^ 0x9E3779B97F4A7C15ull);
   for (const auto& q : placed) {
     const auto& set = c.sets[q.set];
-    const double m = c.materials[set.material].density * 4.0 / 3.0 * M_PI * q.r * q.r * q.r;
+    const bool ell = set.shape.kind == ShapeConfig::Kind::Ellipsoid;
+    const Vec3 axes = q.r * set.shape.axes_rel;
+    const double m = c.materials[set.material].density * 4.0 / 3.0 * M_PI * axes.prod();
     if (!s.domain.contains(q.x)) {
       std::ostringstream e;
       e << set.where << ": particle " << q.index_in_set << " of set '" << set.name << "' at (" << q.x.transpose()
         << ") lies outside the domain; move it or enlarge domain";
       throw SetupError(e.str());
     }
-    s.particles.add(gid++, q.x, set.velocity, q.r, m, set.material);
+    const auto i = s.particles.add(gid++, q.x, set.velocity, q.r, m, set.material, ell ? kEllipsoid : kSphere);
+    if (need.ellipsoids) {
+      auto& p = s.particles;
+      p.semi_axes[i] = axes;
+      const Vec3 a2 = axes.cwiseProduct(axes);
+      p.inertia[i] = m / 5.0 * Vec3(a2.y() + a2.z(), a2.x() + a2.z(), a2.x() + a2.y());
+      if (ell) {
+        p.orientation[i] = set.shape.random_orientation ? random_orientation(orient_rng[q.set]) : set.shape.orientation;
+        p.form[i] = contact::quadratic_form(axes, p.orientation[i]);
+      }
+    }
   }
+  if (need.ellipsoids)
+    for (const auto& w : s.walls.cylinders)
+      if (!w.surface.inside)
+        throw SetupError("wall '" + w.name + "': ellipsoids against the outside of a cylinder are not supported; "
+                         "use inside: true or spheres");
 
   double rmax = 0;
   for (const auto r : s.particles.radius) rmax = std::max(rmax, r);
-  s.neighbors.configure(need.history_size, c.skin * 2 * rmax);
+  // Ellipsoid scenes keep the PW85 lambda of each pair after the law's history.
+  s.neighbors.configure(need.history_size + (need.ellipsoids ? 1 : 0), c.skin * 2 * rmax);
   return s;
 }
 

@@ -12,6 +12,7 @@ namespace grains::sim {
 struct SceneNeeds {
   bool tangential = false, rolling = false, cohesion = false;
   bool rotation = false;
+  bool ellipsoids = false;  // some particle is non-spherical: rigid-body integrator, shape dispatch
   bool gravity = false, planes = false, cylinders = false, moving_walls = false;
   int history_size = 0;  // per contact
   FieldSet fields;

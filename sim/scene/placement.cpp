@@ -129,6 +129,7 @@ std::vector<PlacedParticle> place_particles(const SceneConfig& c) {
     switch (set.placement.kind) {
       case Placement::Kind::RandomFill: {
         auto radii = sample_radii(set.size, set.count, rng);
+        for (auto& r : radii) r *= set.shape.bounding_factor;
         std::sort(radii.begin(), radii.end(), std::greater<>());  // largest first
         std::uniform_real_distribution<double> u(0.0, 1.0);
         const std::int64_t budget = 2000;  // consecutive failed attempts before giving up
@@ -161,7 +162,7 @@ std::vector<PlacedParticle> place_particles(const SceneConfig& c) {
         break;
       }
       case Placement::Kind::Lattice: {
-        const double rl = set.size.largest();
+        const double rl = set.size.largest() * set.shape.bounding_factor;
         const double a = set.placement.spacing > 0 ? set.placement.spacing : 2 * rl * (1 + 1e-6);
         std::array<long, 3> n{};
         for (int d = 0; d < 3; ++d) n[d] = static_cast<long>(std::floor((reg.hi[d] - reg.lo[d] - 2 * rl) / a)) + 1;
@@ -174,6 +175,7 @@ std::vector<PlacedParticle> place_particles(const SceneConfig& c) {
                            std::to_string(cap) + " sites at spacing " + fmt(a) + " m but count is " +
                            std::to_string(want) + "; enlarge the region or lower count");
         auto radii = sample_radii(set.size, want, rng);
+        for (auto& r : radii) r *= set.shape.bounding_factor;
         for (std::int64_t k = 0; k < want; ++k) {
           const long ix = k % n[0], iy = (k / n[0]) % n[1], iz = k / (n[0] * n[1]);
           const Vec3 x = reg.lo + Vec3::Constant(rl) + a * Vec3(ix, iy, iz);
@@ -185,6 +187,7 @@ std::vector<PlacedParticle> place_particles(const SceneConfig& c) {
         const auto& pos = set.placement.positions;
         std::vector<double> radii = set.placement.radii;
         if (radii.empty()) radii = sample_radii(set.size, static_cast<std::int64_t>(pos.size()), rng);
+        for (auto& r : radii) r *= set.shape.bounding_factor;
         for (std::size_t k = 0; k < pos.size(); ++k) put(pos[k], radii[k], k);
         break;
       }

@@ -42,8 +42,23 @@ struct Placement {
   std::vector<std::string> position_where;  // File: file:line of each position
 };
 
+/// The shape of a particle set. Ellipsoid semi-axes scale with each
+/// particle's size: axes = bounding radius * axes_rel, where the bounding
+/// radius is the set's radius (from its size distribution) times
+/// bounding_factor. With `aspect_ratio: alpha` the radius is the volume-
+/// equivalent radius and the axes are r (alpha^{2/3}, alpha^{-1/3}, alpha^{-1/3})
+/// (prolate along the body x axis for alpha > 1, oblate for alpha < 1).
+struct ShapeConfig {
+  enum class Kind { Sphere, Ellipsoid } kind = Kind::Sphere;
+  Vec3 axes_rel{1, 1, 1};      // semi-axes / bounding radius (largest entry 1)
+  double bounding_factor = 1;  // bounding radius / size-distribution radius
+  bool random_orientation = true;
+  Quat orientation = Quat::Identity();
+};
+
 struct ParticleSetConfig {
   std::string name;
+  ShapeConfig shape;
   int material = 0;
   SizeDistribution size;
   std::int64_t count = 0;  // 0 with Lattice: fill the region

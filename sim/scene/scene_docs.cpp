@@ -40,7 +40,20 @@ std::vector<EffectDoc> scene_docs() {
                     .req().si("m").in(0, inf, true),
                 key("count", K::Integer, "number of particles (lattice: optional, fills the region)").in(1, 1e12),
                 key("placement", K::Map, "where the particles start (see placement.*)").req(),
+                key("shape", K::Map, "particle shape (see particles.shape); default a sphere"),
                 key("velocity", K::Vec3, "initial velocity").def("[0, 0, 0]").si("m/s")}});
+  d.push_back({"particles.shape", "shape: {type: ellipsoid, ...}",
+               "The shape of a particle set. Ellipsoids use the Perram-Wertheim contact function and a "
+               "quaternion rigid-body integrator; their axes scale with each particle's radius.",
+               {key("type", K::String, "shape kind").req().one_of({"sphere", "ellipsoid"}),
+                key("aspect_ratio", K::Number,
+                    "ellipsoid of revolution a : b : b with a/b = aspect_ratio (prolate > 1, oblate < 1); the set's "
+                    "radius is then the volume-equivalent radius")
+                    .in(0, 1000, true),
+                key("semi_axes", K::Vec3,
+                    "semi-axes ratios a : b : c; the set's radius is the largest semi-axis")
+                    .in(0, inf, true),
+                key("orientation", K::String, "'random' (uniform) or a unit quaternion [w, x, y, z]").def("random")}});
   d.push_back({"particles.radius", "radius: {distribution: ..., ...}", "A particle size distribution (radii).",
                {key("distribution", K::String, "kind").req().one_of({"uniform", "normal", "lognormal", "discrete"}),
                 key("min", K::Number, "smallest radius (uniform; truncation for normal/lognormal)").si("m").in(0, inf, true),

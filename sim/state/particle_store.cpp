@@ -18,6 +18,9 @@ std::vector<std::string> ParticleStore::field_names() const {
   if (fields_.has(Field::Orientation)) n.emplace_back("orientation");
   if (fields_.has(Field::WallHistory))
     n.emplace_back("wall_history[" + std::to_string(wall_history_size_) + "]");
+  if (fields_.has(Field::AngularMomentum)) n.emplace_back("angular_momentum");
+  if (fields_.has(Field::SemiAxes)) n.emplace_back("semi_axes");
+  if (fields_.has(Field::ShapeForm)) n.emplace_back("shape_form");
   return n;
 }
 
@@ -41,6 +44,9 @@ std::size_t ParticleStore::add(std::int64_t gid, const Vec3& xi, const Vec3& vi,
   }
   if (fields_.has(Field::Orientation)) orientation.push_back(Quat::Identity());
   wall_history.resize(wall_history.size() + wall_history_size_, 0.0);
+  if (fields_.has(Field::AngularMomentum)) angular_momentum.push_back(Vec3::Zero());
+  if (fields_.has(Field::SemiAxes)) semi_axes.push_back(Vec3(r, r, r));
+  if (fields_.has(Field::ShapeForm)) form.push_back({r * r, 0, 0, r * r, 0, r * r});
   return n_owned_++;
 }
 
@@ -59,6 +65,9 @@ void ParticleStore::add_ghost(const ParticleStore& from, std::size_t s, const Ve
   if (fields_.has(Field::Inertia)) inertia.push_back(from.inertia[s]);
   if (fields_.has(Field::Orientation)) orientation.push_back(from.orientation[s]);
   wall_history.resize(wall_history.size() + wall_history_size_, 0.0);
+  if (fields_.has(Field::AngularMomentum)) angular_momentum.push_back(from.angular_momentum[s]);
+  if (fields_.has(Field::SemiAxes)) semi_axes.push_back(from.semi_axes[s]);
+  if (fields_.has(Field::ShapeForm)) form.push_back(from.form[s]);
 }
 
 void ParticleStore::clear_ghosts() {

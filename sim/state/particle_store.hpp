@@ -14,6 +14,7 @@
 //    allocates no angular velocity, torque, inertia or orientation at all.
 //  * Per-particle wall history (one slot group per wall that keeps history)
 //    is a per-particle field, so it moves and permutes with its particle.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -34,7 +35,13 @@ enum class Field : std::uint32_t {
   Inertia = 1u << 2,          // principal moments (body frame); spheres use x only
   Orientation = 1u << 3,      // unit quaternion body -> world
   WallHistory = 1u << 4,      // history slots for particle-wall contacts
+  AngularMomentum = 1u << 5,  // world frame; integrated for non-spherical bodies
+  SemiAxes = 1u << 6,         // ellipsoid semi-axes (body frame); spheres: (r, r, r)
+  ShapeForm = 1u << 7,        // PW85 form Q = R diag(a^2) R^T, packed upper triangle, kept in step
 };
+
+/// Shape kinds stored in ParticleStore::shape.
+enum ShapeKind : std::int32_t { kSphere = 0, kEllipsoid = 1 };
 
 class FieldSet {
  public:
@@ -85,6 +92,8 @@ class ParticleStore {
   std::vector<Vec3> omega, torque, inertia;
   std::vector<Quat> orientation;
   std::vector<double> wall_history;  // size() * wall_history_size()
+  std::vector<Vec3> angular_momentum, semi_axes;
+  std::vector<std::array<double, 6>> form;
 
   /// Applies fn(name, unit, vector&, width) to every allocated per-particle
   /// array, core first; width is the number of entries per particle. This is
@@ -100,6 +109,9 @@ class ParticleStore {
     if (fields_.has(Field::Inertia)) fn("inertia", "kg m^2", inertia, 1);
     if (fields_.has(Field::Orientation)) fn("orientation", "", orientation, 1);
     if (wall_history_size_ > 0) fn("wall_history", "m (tangential), N m (rolling)", wall_history, wall_history_size_);
+    if (fields_.has(Field::AngularMomentum)) fn("angular_momentum", "kg m^2/s", angular_momentum, 1);
+    if (fields_.has(Field::SemiAxes)) fn("semi_axes", "m", semi_axes, 1);
+    if (fields_.has(Field::ShapeForm)) fn("shape_form", "m^2", form, 1);
   }
 
  private:

@@ -3,35 +3,40 @@
 // Sphere-wall contacts through the same Law as particle pairs: the wall is
 // body j with infinite mass (m* = m_i), the wall's velocity and no spin.
 // History per (particle, wall) lives in the particle's wall-history field.
+// With Shapes = true (scenes with ellipsoids) the geometry is chosen per
+// particle: sphere or ellipsoid (contact/ellipsoid/ellipsoid_walls.hpp).
 #include <algorithm>
 
+#include "contact/ellipsoid/ellipsoid_walls.hpp"
 #include "sim/laws/contact_law.hpp"
 #include "sim/scene/stage.hpp"
 
 namespace grains::sim {
 
-template <class Law>
+template <class Law, bool Rotation = Law::needs_rotation>
 struct WallContact {
   static GRAINS_INLINE void apply(ParticleStore& p, std::size_t i, const contact::ContactGeometry& g,
                            const Vec3& wall_velocity, const PairParams& pp, double dt, double* hist) {
     Vec3 v_rel = p.v[i] - wall_velocity;
     Vec3 w_rel = Vec3::Zero();
     Vec3 ci;
-    if constexpr (Law::needs_rotation) {
+    if constexpr (Rotation) {
       ci = g.point - p.x[i];
       v_rel += p.omega[i].cross(ci);
       w_rel = p.omega[i];
     }
     const auto r = Law::evaluate(g, v_rel, w_rel, p.mass[i], pp, dt, hist);
     p.f[i] += r.force;
-    if constexpr (Law::needs_rotation) p.torque[i] += ci.cross(r.force) + r.rolling_torque;
+    if constexpr (Rotation) p.torque[i] += ci.cross(r.force) + r.rolling_torque;
   }
 };
 
-template <class Law>
+template <class Law, bool Shapes = false>
 class PlaneWallStage final : public Stage {
  public:
-  std::string name() const override { return "force.plane_walls<" + Law::name() + ">"; }
+  std::string name() const override {
+    return std::string("force.plane_walls") + (Shapes ? "[sphere|ellipsoid]" : "") + "<" + Law::name() + ">";
+  }
   Phase phase() const override { return Phase::Force; }
   void run(Scene& s) override {
     ParticleStore& p = s.particles;
@@ -42,20 +47,33 @@ class PlaneWallStage final : public Stage {
       for (const auto i : s.neighbors.plane_near[w]) {
         double* hist = H > 0 ? p.wall_history.data() + static_cast<std::size_t>(i) * WH + wall.history_slot * H : nullptr;
         contact::ContactGeometry g;
-        if (!contact::sphere_plane(p.x[i], p.radius[i], wall.point, wall.normal, g)) {
+        bool touching;
+        if constexpr (Shapes) {
+          if (p.shape[i] == kEllipsoid) {
+            g = contact::ellipsoid_plane_contact({p.x[i], p.semi_axes[i], p.orientation[i]},
+                                                 contact::PlaneWall{wall.point, wall.normal}, &touching);
+          } else {
+            touching = contact::sphere_plane(p.x[i], p.radius[i], wall.point, wall.normal, g);
+          }
+        } else {
+          touching = contact::sphere_plane(p.x[i], p.radius[i], wall.point, wall.normal, g);
+        }
+        if (!touching) {
           if constexpr (H > 0) std::fill_n(hist, H, 0.0);
           continue;
         }
-        WallContact<Law>::apply(p, i, g, wall.velocity, s.pairs(p.material[i], wall.material), s.clock.dt, hist);
+        WallContact<Law, Law::needs_rotation || Shapes>::apply(p, i, g, wall.velocity, s.pairs(p.material[i], wall.material), s.clock.dt, hist);
       }
     }
   }
 };
 
-template <class Law>
+template <class Law, bool Shapes = false>
 class CylinderWallStage final : public Stage {
  public:
-  std::string name() const override { return "force.cylinder_walls<" + Law::name() + ">"; }
+  std::string name() const override {
+    return std::string("force.cylinder_walls") + (Shapes ? "[sphere|ellipsoid]" : "") + "<" + Law::name() + ">";
+  }
   Phase phase() const override { return Phase::Force; }
   void run(Scene& s) override {
     ParticleStore& p = s.particles;
@@ -66,11 +84,24 @@ class CylinderWallStage final : public Stage {
       for (const auto i : s.neighbors.cylinder_near[w]) {
         double* hist = H > 0 ? p.wall_history.data() + static_cast<std::size_t>(i) * WH + wall.history_slot * H : nullptr;
         contact::ContactGeometry g;
-        if (!contact::sphere_cylinder(p.x[i], p.radius[i], wall.surface, g)) {
+        bool touching;
+        if constexpr (Shapes) {
+          if (p.shape[i] == kEllipsoid) {
+            const auto& c = wall.surface;  // inside cylinders only (checked at set-up)
+            g = contact::ellipsoid_cylinder_contact({p.x[i], p.semi_axes[i], p.orientation[i]},
+                                                    contact::CylinderWall{c.base, c.axis, c.radius, c.t_min, c.t_max},
+                                                    &touching);
+          } else {
+            touching = contact::sphere_cylinder(p.x[i], p.radius[i], wall.surface, g);
+          }
+        } else {
+          touching = contact::sphere_cylinder(p.x[i], p.radius[i], wall.surface, g);
+        }
+        if (!touching) {
           if constexpr (H > 0) std::fill_n(hist, H, 0.0);
           continue;
         }
-        WallContact<Law>::apply(p, i, g, wall.velocity, s.pairs(p.material[i], wall.material), s.clock.dt, hist);
+        WallContact<Law, Law::needs_rotation || Shapes>::apply(p, i, g, wall.velocity, s.pairs(p.material[i], wall.material), s.clock.dt, hist);
       }
     }
   }

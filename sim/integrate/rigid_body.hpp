@@ -1,0 +1,85 @@
+#pragma once
+// Velocity Verlet for rigid bodies with orientation (ellipsoids, clumps).
+//
+// State: position x, velocity v, orientation q (unit quaternion, body ->
+// world), angular momentum L (world frame), principal inertia I (body frame).
+// The angular velocity is derived, w = R I^-1 R^T L, and kept in the omega
+// field for the contact kinematics.
+//
+//   kick:   v += dt/2 F/m,  L += dt/2 T
+//   drift:  x += dt v
+//           q_half = exp(dt/2 w(q, L)) q;  w_mid = w(q_half, L);  q += exp(dt w_mid) q
+// The rotation is the implicit-midpoint free rotation (one fixed-point
+// iteration), second order like the translation. L is constant during the
+// drift, as it is for a torque-free body, so the drift conserves L exactly and
+// the kinetic energy to second order. Each rotation is applied as an exact
+// unit quaternion and the product is renormalised, so |q| = 1 to rounding at
+// every step (tested over 10^6 steps). After the drift the PW85 form
+// Q = R diag(a^2) R^T of every ellipsoid is refreshed for the force phase.
+#include <cmath>
+
+#include "contact/ellipsoid/ellipsoid.hpp"
+#include "sim/scene/stage.hpp"
+
+namespace grains::sim {
+
+/// World-frame angular velocity from the angular momentum.
+inline Vec3 angular_velocity(const Quat& q, const Vec3& inertia, const Vec3& L) {
+  const Eigen::Matrix3d R = q.toRotationMatrix();
+  return R * (R.transpose() * L).cwiseQuotient(inertia);
+}
+
+/// q rotated by the rotation vector w dt (exact unit quaternion, then renormalised).
+inline Quat rotate(const Quat& q, const Vec3& w, double dt) {
+  const double angle = w.norm() * dt;
+  if (angle == 0.0) return q;
+  Quat r(Eigen::AngleAxisd(angle, w / w.norm()));
+  Quat out = r * q;
+  out.normalize();
+  return out;
+}
+
+inline void rigid_half_kick(ParticleStore& p, double half_dt) {
+  const std::size_t n = p.n_owned();
+  for (std::size_t i = 0; i < n; ++i) {
+    p.v[i] += (half_dt * p.inv_mass[i]) * p.f[i];
+    p.angular_momentum[i] += half_dt * p.torque[i];
+    p.omega[i] = angular_velocity(p.orientation[i], p.inertia[i], p.angular_momentum[i]);
+  }
+}
+
+/// Refreshes the PW85 forms of the ellipsoids among particles [0, n).
+inline void update_forms(ParticleStore& p, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i)
+    if (p.shape[i] == kEllipsoid) p.form[i] = contact::quadratic_form(p.semi_axes[i], p.orientation[i]);
+}
+
+class RigidBodyDrift final : public Stage {
+ public:
+  std::string name() const override { return "rigid_body.kick_drift(quaternion midpoint)"; }
+  Phase phase() const override { return Phase::Drift; }
+  void run(Scene& s) override {
+    ParticleStore& p = s.particles;
+    const double dt = s.clock.dt;
+    rigid_half_kick(p, 0.5 * dt);
+    const std::size_t n = p.n_owned();
+    for (std::size_t i = 0; i < n; ++i) {
+      p.x[i] += dt * p.v[i];
+      const Vec3& L = p.angular_momentum[i];
+      const Quat q_half = rotate(p.orientation[i], p.omega[i], 0.5 * dt);
+      const Vec3 w_mid = angular_velocity(q_half, p.inertia[i], L);
+      p.orientation[i] = rotate(p.orientation[i], w_mid, dt);
+      p.omega[i] = angular_velocity(p.orientation[i], p.inertia[i], L);
+    }
+    update_forms(p, n);
+  }
+};
+
+class RigidBodyKick final : public Stage {
+ public:
+  std::string name() const override { return "rigid_body.kick"; }
+  Phase phase() const override { return Phase::Kick; }
+  void run(Scene& s) override { rigid_half_kick(s.particles, 0.5 * s.clock.dt); }
+};
+
+}  // namespace grains::sim
