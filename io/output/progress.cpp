@@ -81,6 +81,9 @@ std::string BlowUpCheck::diagnose(const sim::Scene& s) const {
   for (std::size_t i = 0; i < rows && !bad; ++i)
     for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
       const auto j = nl.partner[k];
+      // For non-spherical bodies the radius bounds the shape: bounding
+      // spheres may overlap a lot without the bodies touching.
+      if (p.shape[i] != sim::kSphere || p.shape[j] != sim::kSphere) continue;
       const double rmin = std::min(p.radius[i], p.radius[j]);
       const double overlap = p.radius[i] + p.radius[j] - (p.x[i] - p.x[j]).norm();
       if (!(overlap > 0.5 * rmin)) continue;

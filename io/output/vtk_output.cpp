@@ -19,6 +19,7 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include "contact/sphere.hpp"
+#include "sim/laws/ellipsoid_pair_stage.hpp"
 
 namespace grains::io {
 
@@ -34,7 +35,14 @@ std::vector<int> coordination_numbers(const sim::Scene& s) {
     for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
       const auto j = nl.partner[k];
       const double rs = p.radius[i] + p.radius[j];
-      if ((p.x[i] - p.x[j]).squaredNorm() < rs * rs) {
+      if ((p.x[i] - p.x[j]).squaredNorm() >= rs * rs) continue;
+      bool touching = true;
+      if (p.shape[i] != sim::kSphere || p.shape[j] != sim::kSphere) {
+        double lambda = -1;
+        contact::ContactGeometry g;
+        touching = sim::shape_pair_geometry(p, i, j, lambda, g);
+      }
+      if (touching) {
         ++z[i];
         if (j < z.size()) ++z[j];
       }

@@ -112,7 +112,7 @@ std::string fmt(double v) {
 
 std::vector<PlacedParticle> place_particles(const SceneConfig& c) {
   double rmax = 0;
-  for (const auto& s : c.sets) rmax = std::max(rmax, s.size.largest());
+  for (const auto& s : c.sets) rmax = std::max(rmax, s.size.largest() * s.shape.bounding_factor);
   PlacementGrid grid(2 * rmax);
   std::vector<PlacedParticle> out;
   for (std::size_t si = 0; si < c.sets.size(); ++si) {
