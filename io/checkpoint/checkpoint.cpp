@@ -165,13 +165,7 @@ void read_particles(const h5::File& f, sim::ParticleStore& p) {
 void read_neighbors(const h5::File& f, sim::Scene& s) {
   auto& nl = s.neighbors;
   const std::size_t n = s.particles.n_owned();
-  const int H = f.read_scalar<std::int32_t>("/neighbor/history_size");
-  if (H != nl.history_size())
-    throw CheckpointError(f.path() + ": contact history of " + std::to_string(H) + " doubles per contact, the case's " +
-                          "contact law keeps " + std::to_string(nl.history_size()) +
-                          ": the checkpoint was written for different contact-law slots");
-  if (f.read_scalar<double>("/neighbor/skin") != nl.skin())
-    throw CheckpointError(f.path() + ": the neighbour skin differs from the case's (neighbor.skin must not change)");
+  const int H = nl.history_size();  // checked against the file in check_compatible
   f.read_vector("/neighbor/row_start", nl.row_start, f.shape("/neighbor/row_start").first, 1);
   const std::size_t m = f.shape("/neighbor/partner").first;
   f.read_vector("/neighbor/partner", nl.partner, m, 1);
@@ -203,15 +197,51 @@ void read_neighbors(const h5::File& f, sim::Scene& s) {
 
 void read_walls(const h5::File& f, sim::Walls& walls) {
   std::vector<sim::Vec3> pt, base;
-  const std::size_t np = f.shape("/walls/plane_point").first, nc = f.shape("/walls/cylinder_base").first;
-  if (np != walls.planes.size() || nc != walls.cylinders.size())
-    throw CheckpointError(f.path() + ": " + std::to_string(np) + " plane and " + std::to_string(nc) +
-                          " cylinder walls, the case has " + std::to_string(walls.planes.size()) + " and " +
-                          std::to_string(walls.cylinders.size()));
+  const std::size_t np = walls.planes.size(), nc = walls.cylinders.size();  // checked in check_compatible
   f.read_vector("/walls/plane_point", pt, np, 1);
   f.read_vector("/walls/cylinder_base", base, nc, 1);
   for (std::size_t w = 0; w < np; ++w) walls.planes[w].point = pt[w];
   for (std::size_t w = 0; w < nc; ++w) walls.cylinders[w].surface.base = base[w];
+}
+
+// Everything that must match between the checkpoint and the scene built from
+// the case, checked before the scene is touched.
+void check_compatible(const h5::File& f, sim::Scene& s) {
+  const std::string& file = f.path();
+  const double dt = f.read_scalar<double>("/clock/dt");
+  if (dt != s.clock.dt)
+    throw CheckpointError(file + ": written with time step dt = " + std::to_string(dt) + " s, the case gives dt = " +
+                          std::to_string(s.clock.dt) + " s; a restart keeps the time step");
+  const auto step = f.read_scalar<std::int64_t>("/clock/step");
+  if (step > s.clock.n_steps)
+    throw CheckpointError(file + ": written at step " + std::to_string(step) + ", after the case's end (" +
+                          std::to_string(s.clock.n_steps) + " steps); raise time.end to continue from it");
+  const int H = f.read_scalar<std::int32_t>("/neighbor/history_size");
+  if (H != s.neighbors.history_size())
+    throw CheckpointError(file + ": contact history of " + std::to_string(H) + " doubles per contact, the case's " +
+                          "contact law keeps " + std::to_string(s.neighbors.history_size()) +
+                          ": the checkpoint was written for different contact-law slots");
+  if (f.read_scalar<double>("/neighbor/skin") != s.neighbors.skin())
+    throw CheckpointError(file + ": the neighbour skin differs from the case's (neighbor.skin must not change)");
+  const std::size_t np = f.shape("/walls/plane_point").first, nc = f.shape("/walls/cylinder_base").first;
+  if (np != s.walls.planes.size() || nc != s.walls.cylinders.size())
+    throw CheckpointError(file + ": " + std::to_string(np) + " plane and " + std::to_string(nc) +
+                          " cylinder walls, the case has " + std::to_string(s.walls.planes.size()) + " and " +
+                          std::to_string(s.walls.cylinders.size()));
+  const std::size_t n = particle_count(f);
+  s.particles.visit_fields([&](const char* name, const char*, auto& vec, int width) {
+    using T = typename std::decay_t<decltype(vec)>::value_type;
+    const std::string ds = std::string("/particles/") + name;
+    if (!f.exists(ds))
+      throw CheckpointError(file + ": has no particle field '" + name +
+                            "', which this case needs: the checkpoint was written for a different case");
+    const auto shape = f.shape(ds);
+    const std::size_t cols = static_cast<std::size_t>(h5::Elem<T>::n) * static_cast<std::size_t>(width);
+    if (shape.first != n || shape.second != cols)
+      throw CheckpointError(file + ": particle field '" + name + "' has " + std::to_string(shape.second) +
+                            " values per particle, this case needs " + std::to_string(cols) +
+                            ": the checkpoint was written for a different case (walls or contact-law slots)");
+  });
 }
 
 }  // namespace
@@ -220,15 +250,8 @@ CheckpointExtras read_checkpoint(const fs::path& file, sim::Scene& s) {
   try {
     const auto f = h5::File::open_read(file.string());
     check_format(f);
-    const double dt = f.read_scalar<double>("/clock/dt");
-    if (dt != s.clock.dt)
-      throw CheckpointError(file.string() + ": written with time step dt = " + std::to_string(dt) +
-                            " s, the case gives dt = " + std::to_string(s.clock.dt) +
-                            " s; a restart keeps the time step");
+    check_compatible(f, s);
     const auto step = f.read_scalar<std::int64_t>("/clock/step");
-    if (step > s.clock.n_steps)
-      throw CheckpointError(file.string() + ": written at step " + std::to_string(step) + ", after the case's end (" +
-                            std::to_string(s.clock.n_steps) + " steps); raise time.end to continue from it");
     read_walls(f, s.walls);
     read_particles(f, s.particles);
     read_neighbors(f, s);

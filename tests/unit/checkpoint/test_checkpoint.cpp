@@ -1,0 +1,165 @@
+// Checkpoints: round trip of every field, bitwise continuation, the signal
+// path with .pvd continuity, retention, invalid files and mismatched cases.
+#include <fstream>
+#include <sstream>
+
+#include "io/checkpoint/checkpoint.hpp"
+#include "io/checkpoint/h5_file.hpp"
+#include "tests/unit/checkpoint/checkpoint_scene.hpp"
+
+namespace grains::test {
+namespace {
+
+io::RunOptions quiet_into(const fs::path& dir) {
+  io::RunOptions o;
+  o.out_dir = dir;
+  o.quiet = true;
+  return o;
+}
+
+TEST(Checkpoint, RoundTripRestoresEveryFieldListAndWall) {
+  TempDir tmp("roundtrip");
+  auto a = make(silo_case());
+  a.pipeline.initialize(a.scene);
+  for (int k = 0; k < 437; ++k) a.pipeline.step(a.scene);  // mid-way between list builds
+  const fs::path file = tmp.path / "x.h5";
+  io::write_checkpoint(file, a.scene, {"silo.yaml", "text", "effective", {0.0, 1.0}, {0, 300}});
+  ASSERT_TRUE(fs::exists(file));
+  EXPECT_FALSE(fs::exists(tmp.path / ".x.h5.tmp"));
+
+  auto b = make(silo_case());  // the initial state
+  const auto x = io::read_checkpoint(file, b.scene);
+  expect_same_state(a.scene, b.scene);
+  EXPECT_EQ(x.case_text, "text");
+  EXPECT_EQ(x.frame_steps, (std::vector<std::int64_t>{0, 300}));
+  // The derived per-entry constants are recomputed identically.
+  ASSERT_EQ(a.scene.neighbors.pair_constants.size(), b.scene.neighbors.pair_constants.size());
+  EXPECT_TRUE(bytes(a.scene.neighbors.pair_constants) == bytes(b.scene.neighbors.pair_constants));
+  EXPECT_EQ(a.scene.neighbors.plane_near, b.scene.neighbors.plane_near);
+  EXPECT_EQ(a.scene.neighbors.cylinder_near, b.scene.neighbors.cylinder_near);
+  EXPECT_GT(a.scene.walls.planes[0].point.z(), 0.0);  // the floor moved, and came back moved
+
+  // Readable by any HDF5 tool: units as attributes, format tags.
+  const auto f = io::h5::File::open_read(file.string());
+  EXPECT_EQ(f.read_attribute("/", "format"), "grains checkpoint");
+  EXPECT_EQ(f.read_attribute("/particles/position", "units"), "m");
+  EXPECT_EQ(f.read_attribute("/particles/velocity", "units"), "m/s");
+  EXPECT_EQ(f.read_attribute("/particles/angular_velocity", "units"), "rad/s");
+  EXPECT_EQ(f.read_attribute("/clock/time", "units"), "s");
+  EXPECT_EQ(f.shape("/particles/position"), (std::pair<std::size_t, std::size_t>{300, 3}));
+  EXPECT_EQ(f.shape("/neighbor/history").second, 6u);  // tangential + rolling
+}
+
+TEST(Checkpoint, ContinuationIsBitwiseIdentical) {
+  TempDir tmp("continue");
+  auto full = make(silo_case());
+  const auto rf = io::run(full, quiet_into(tmp.path / "full"));
+  EXPECT_EQ(rf.steps, 1500);
+  EXPECT_GT(full.scene.neighbors.stats().builds, 5);
+
+  // Restart from step 750, then once more from the continuation's 1250.
+  auto part = make(silo_case());
+  auto opt = quiet_into(tmp.path / "part");
+  opt.restart = tmp.path / "full" / "checkpoints" / io::checkpoint_name(750);
+  const auto rp = io::run(part, opt);
+  EXPECT_EQ(rp.steps, 1500);
+  expect_same_state(full.scene, part.scene);
+
+  auto again = make(silo_case());
+  auto opt2 = quiet_into(tmp.path / "again");
+  opt2.restart = tmp.path / "part" / "checkpoints" / io::checkpoint_name(1250);
+  io::run(again, opt2);
+  expect_same_state(full.scene, again.scene);
+}
+
+TEST(Checkpoint, SignalWritesCheckpointAndResumeContinuesThePvdSeries) {
+  TempDir tmp("signal");
+  auto full = make(silo_case());
+  io::run(full, quiet_into(tmp.path / "full"));
+
+  auto first = make(silo_case());
+  first.pipeline.add(std::make_unique<RaiseAt>(1013, SIGTERM));
+  auto opt = quiet_into(tmp.path / "cut");
+  opt.handle_signals = true;
+  const auto r1 = io::run(first, opt);
+  EXPECT_EQ(r1.signal, SIGTERM);
+  EXPECT_EQ(r1.steps, 1013);
+  EXPECT_EQ(fs::path(r1.checkpoint).filename(), io::checkpoint_name(1013));
+  EXPECT_NE(read_text(tmp.path / "cut" / "summary.json").find("\"interrupted_by_signal\": 15"), std::string::npos);
+
+  auto second = make(silo_case());
+  auto opt2 = quiet_into(tmp.path / "cut");
+  opt2.restart = io::newest_valid_checkpoint(tmp.path / "cut" / "checkpoints");
+  EXPECT_EQ(opt2.restart.filename(), io::checkpoint_name(1013));
+  io::run(second, opt2);
+  expect_same_state(full.scene, second.scene);
+  // The same series: no duplicated and no missing frame.
+  EXPECT_EQ(read_text(tmp.path / "cut" / "particles.pvd"), read_text(tmp.path / "full" / "particles.pvd"));
+  EXPECT_EQ(read_text(tmp.path / "cut" / "walls.pvd"), read_text(tmp.path / "full" / "walls.pvd"));
+}
+
+TEST(Checkpoint, KeepsTheNewestAndSkipsInvalidFiles) {
+  TempDir tmp("keep");
+  auto s = make(silo_case("{every_steps: 100, keep: 2}"));
+  io::run(s, quiet_into(tmp.path));
+  const fs::path dir = tmp.path / "checkpoints";
+  auto all = io::list_checkpoints(dir);
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[0].filename(), io::checkpoint_name(1400));
+  EXPECT_EQ(all[1].filename(), io::checkpoint_name(1500));
+
+  // A truncated file under a newer name (as a broken disk might leave) and an
+  // empty one are skipped; the temporary of an interrupted write is ignored.
+  {
+    std::ifstream in(all[1], std::ios::binary);
+    std::string data((std::istreambuf_iterator<char>(in)), {});
+    std::ofstream(dir / io::checkpoint_name(1600), std::ios::binary) << data.substr(0, data.size() / 2);
+    std::ofstream(dir / io::checkpoint_name(1700)) << "";
+    std::ofstream(dir / ".checkpoint_000000001800.h5.tmp") << "partial";
+  }
+  std::vector<std::string> skipped;
+  EXPECT_EQ(io::newest_valid_checkpoint(dir, &skipped).filename(), io::checkpoint_name(1500));
+  EXPECT_EQ(skipped.size(), 2u);
+  io::prune_checkpoints(dir, 5);
+  EXPECT_FALSE(fs::exists(dir / ".checkpoint_000000001800.h5.tmp"));
+}
+
+TEST(Checkpoint, RefusesACheckpointOfADifferentCase) {
+  TempDir tmp("mismatch");
+  auto a = make(silo_case());
+  a.pipeline.initialize(a.scene);
+  const fs::path file = tmp.path / "a.h5";
+  io::write_checkpoint(file, a.scene, {});
+  auto expect_error = [&](const std::vector<std::string>& sets, const std::string& what) {
+    auto b = make(silo_case(), sets);
+    try {
+      io::read_checkpoint(file, b.scene);
+      ADD_FAILURE() << "no error for " << sets[0];
+    } catch (const io::CheckpointError& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  expect_error({"time.dt=4.0e-6"}, "a restart keeps the time step");
+  expect_error({"materials.0.rolling_friction=0"}, "different contact-law slots");
+  expect_error({"walls.1={type: plane, name: lid, point: [0, 0, 0.03], normal: [0, 0, -1], material: grain}"},
+               "1 cylinder walls, the case has 2 and 0");
+  EXPECT_THROW(io::checkpoint_info(tmp.path / "missing.h5"), io::CheckpointError);
+}
+
+TEST(Checkpoint, CaseSectionIsValidatedWithLocations) {
+  try {
+    make(silo_case("{every: 0.001, keep: 0, evry_steps: 3}"));
+    ADD_FAILURE() << "no error";
+  } catch (const io::CaseError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("silo.yaml:18:37: checkpoint: unknown key"), std::string::npos) << m;
+    EXPECT_NE(m.find("unknown key 'evry_steps'; did you mean 'every_steps'?"), std::string::npos) << m;
+    EXPECT_NE(m.find("silo.yaml:18:34: checkpoint: keep = 0 is out of range; valid: [1, 1000000]"), std::string::npos) << m;
+  }
+  const auto s = make(silo_case("{every: 0.0024}"));
+  EXPECT_EQ(s.c.checkpoint.every, 0.0024);
+  EXPECT_EQ(s.c.checkpoint.keep, 3);
+}
+
+}  // namespace
+}  // namespace grains::test
