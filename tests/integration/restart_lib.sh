@@ -1,0 +1,43 @@
+# Shared by the restart script tests. Usage: source restart_lib.sh GRAINS CASE WORKDIR
+set -u
+GRAINS=$1
+CASE=$2
+WORK=$3
+rm -rf "$WORK"
+mkdir -p "$WORK"
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+# The newest checkpoint of an output folder.
+newest() { ls "$1"/checkpoints/checkpoint_*.h5 2>/dev/null | sort | tail -n 1; }
+
+# Bitwise equality of two checkpoints' state (h5diff compares exactly unless
+# given a tolerance); exits the test on a difference.
+same_state() {
+  for obj in /particles /neighbor /walls /clock /scene /output; do
+    h5diff -q "$1" "$2" "$obj" >/dev/null 2>&1 || fail "$obj differs between $1 and $2"
+  done
+}
+
+# The uninterrupted reference run.
+reference() {
+  "$GRAINS" run "$CASE" -o "$WORK/ref" -q || fail "reference run failed"
+  REF=$(newest "$WORK/ref")
+  [ -n "$REF" ] || fail "the reference run wrote no checkpoint"
+  # The comparison can fail: an earlier checkpoint differs from the final one.
+  OLDER=$(ls "$WORK"/ref/checkpoints/checkpoint_*.h5 | sort | head -n 1)
+  if h5diff -q "$OLDER" "$REF" /particles >/dev/null 2>&1; then fail "h5diff sees no difference between steps"; fi
+}
+
+# Final state and frame series of OUTDIR equal the reference.
+same_as_reference() {
+  local out=$1
+  local last
+  last=$(newest "$out")
+  [ "$(basename "$last")" = "$(basename "$REF")" ] || fail "$out ended at $(basename "$last"), reference at $(basename "$REF")"
+  same_state "$REF" "$last"
+  cmp -s "$WORK/ref/particles.pvd" "$out/particles.pvd" || fail "particles.pvd differs (duplicate or missing frames)"
+  for f in "$WORK"/ref/frames/*.vtu; do
+    cmp -s "$f" "$out/frames/$(basename "$f")" || fail "frame $(basename "$f") differs"
+  done
+}
