@@ -6,6 +6,7 @@
 
 #include "contact/clump/clump_command.hpp"
 #include "contact/ellipsoid/pw85_batch.hpp"
+#include "io/cli/analyze_command.hpp"
 
 namespace grains::io {
 
@@ -43,6 +44,8 @@ int run_tool_command(const std::string& cmd, const std::vector<std::string>& arg
     return contact::run_pw85_batch(in, std::cout, std::cerr);
   }
   if (cmd == "clump") return grains::clump::run_clump_command(args, std::cout, std::cerr);
+  if (cmd == "analyze") return run_analyze_command(args, std::cout, std::cerr);
+  if (cmd == "render") return run_render_command(args, std::cout, std::cerr);
   return -1;
 }
 

@@ -1,0 +1,27 @@
+#pragma once
+// An X display for VTK's GLX render windows on a headless machine: when
+// DISPLAY is unset, starts `Xvfb -displayfd` (it picks a free display number
+// and reports it) and points DISPLAY at it until the guard is destroyed.
+#include <string>
+#include <sys/types.h>
+
+namespace grains::postprocess {
+
+class HeadlessDisplay {
+ public:
+  /// Throws std::runtime_error when there is no DISPLAY and Xvfb cannot start.
+  HeadlessDisplay();
+  ~HeadlessDisplay();
+  HeadlessDisplay(const HeadlessDisplay&) = delete;
+  HeadlessDisplay& operator=(const HeadlessDisplay&) = delete;
+  /// The display in use (":0", ":99", ...).
+  const std::string& display() const { return display_; }
+  /// True when this guard started its own Xvfb.
+  bool started_xvfb() const { return pid_ > 0; }
+
+ private:
+  std::string display_;
+  pid_t pid_ = -1;
+};
+
+}  // namespace grains::postprocess
