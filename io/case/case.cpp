@@ -545,6 +545,10 @@ void apply_override(YAML::Node& root, const std::string& text, Validator& v) {
         return;
       }
       YAML::Node next = cur[p];
+      if (!next) {  // a section the case does not have yet: create it
+        cur[p] = YAML::Node(YAML::NodeType::Map);
+        next = cur[p];
+      }
       cur.reset(next);
     }
   }

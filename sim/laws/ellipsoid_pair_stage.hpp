@@ -22,6 +22,18 @@ inline bool shape_pair_geometry(const ParticleStore& p, std::size_t i, std::size
                                 contact::ContactGeometry& g) {
   const bool ei = p.shape[i] == kEllipsoid, ej = p.shape[j] == kEllipsoid;
   if (!ei && !ej) return contact::sphere_sphere(p.x[i], p.radius[i], p.x[j], p.radius[j], g);
+  // Separating axis along the line of centres: if the two shadows on that
+  // line do not overlap (support radii h = sqrt(u^T Q u)), the bodies are
+  // apart. Two matrix-vector products, far cheaper than a PW85 solve, and it
+  // rejects most pairs whose bounding spheres overlap.
+  const Vec3 r = p.x[j] - p.x[i];
+  const double r2 = r.squaredNorm();
+  if (r2 > 0) {
+    const Vec3 u = r / std::sqrt(r2);
+    const double hi = ei ? std::sqrt(u.dot(contact::form_times(p.form[i], u))) : p.radius[i];
+    const double hj = ej ? std::sqrt(u.dot(contact::form_times(p.form[j], u))) : p.radius[j];
+    if ((hi + hj) * (hi + hj) <= r2) return false;
+  }
   if (ei && ej) {
     const auto c = contact::ellipsoid_contact(p.x[i], p.form[i], p.x[j], p.form[j], lambda);
     if (c.pw85.status == contact::Pw85Status::ok || c.pw85.status == contact::Pw85Status::separated)
