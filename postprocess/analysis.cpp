@@ -59,13 +59,18 @@ AnalysisResult analyze_frame(const Frame& f, const AnalysisOptions& o, const Wal
   if (!r.forces.single_material)
     r.notes.push_back("contact forces: several materials; sqrt(R*) delta^1.5 ignores their different E*");
 
-  // RDF: r_max limited so that reference centres exist.
-  const Vec3 ext = r.region.hi - r.region.lo;
-  r.rdf_rmax = std::min(o.rdf_rmax_diameters * r.mean_diameter, 0.45 * ext.minCoeff());
+  // RDF: every partner within r_max of a reference centre must be in the
+  // sample, so references lie r_max inside the RDF box. The automatic box is
+  // the whole bed below its free surface (no margin): its walls and surface
+  // bound the partners, and the references stay r_max away from them.
+  const Box rdf_box = o.region ? *o.region : auto_bulk_region(f, 0.0);
+  const Vec3 ext = rdf_box.hi - rdf_box.lo;
+  r.rdf_rmax = std::min(o.rdf_rmax_diameters * r.mean_diameter, 0.3 * ext.minCoeff());
   if (r.rdf_rmax < o.rdf_rmax_diameters * r.mean_diameter)
-    r.notes.push_back("rdf: r_max reduced to 0.45 of the region's smallest side");
+    r.notes.push_back("rdf: r_max reduced to 0.3 of the sample's smallest side");
   try {
-    r.rdf = radial_distribution(units.centre, r.region, r.rdf_rmax, o.rdf_bins);
+    r.rdf = radial_distribution(units.centre, rdf_box, r.rdf_rmax, o.rdf_bins);
+    r.rdf_region = rdf_box;
   } catch (const std::invalid_argument& e) {
     r.notes.push_back(std::string("rdf not computed: ") + e.what());
   }
@@ -134,7 +139,8 @@ std::string analysis_json(const AnalysisResult& r) {
     << ", \"single_material\": " << (fd.single_material ? "true" : "false")
     << ", \"force_model\": \"Hertz, f ~ sqrt(R*) overlap^1.5, normalised by its mean\"},\n";
   if (r.rdf) {
-    o << "  \"rdf\": {\"r_max\": " << r.rdf_rmax << ", \"bins\": " << r.rdf->g.size()
+    o << "  \"rdf\": {\"box\": {\"min\": " << vec_json(r.rdf_region.lo) << ", \"max\": " << vec_json(r.rdf_region.hi)
+      << "}, \"r_max\": " << r.rdf_rmax << ", \"bins\": " << r.rdf->g.size()
       << ", \"reference_particles\": " << r.rdf->n_reference << ", \"density\": " << r.rdf->density << "},\n";
   }
   if (r.nematic) {

@@ -2,7 +2,7 @@
 // Everything `grains analyze` computes for one frame, and the files it writes:
 //   analysis.json      the scalar results, the region and the methods used
 //   phi_profile.csv    phi in slabs along an axis (with error bars when sampled)
-//   rdf.csv            g(r) of the centres in the region
+//   rdf.csv            g(r) of the centres (in the region, or the whole bed when automatic)
 //   coordination.csv   histogram of contacts per particle in the region
 //   contact_forces.csv P(f/<f>) of Hertz normal forces rebuilt from overlaps
 //   contacts.csv       every contact with its point in the region
@@ -58,6 +58,7 @@ struct AnalysisResult {
   std::vector<std::int64_t> ids;  // particle ids of the frame (contacts.csv)
   std::optional<Rdf> rdf;
   double rdf_rmax = 0;
+  Box rdf_region;  // the sample the RDF's references were taken from
   std::optional<NematicOrder> nematic;
   std::vector<std::string> notes;  // what could not be computed and why, caveats
 };
