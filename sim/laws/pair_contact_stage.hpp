@@ -27,18 +27,19 @@ class PairContactStage final : public Stage {
       const double ri = p.radius[i];
       for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
         const std::size_t j = nl.partner[k];
-        double* hist = H > 0 ? nl.history.data() + static_cast<std::size_t>(k) * H : nullptr;
-        // Cheap rejection first: most list entries are within the skin but not touching.
-        const auto& pc = nl.pair_constants[k];
+        // Cheap rejection first: most list entries are within the skin but not
+        // touching; their history is not even read unless the pair just separated.
+        auto& pc = nl.pair_constants[k];
         const Vec3 d = xi - p.x[j];
         const double d2 = d.squaredNorm();
         if (d2 >= pc.contact2) {
-          // Forget the history of a broken contact (write only if there is any).
           if constexpr (H > 0)
-            if (hist[0] != 0.0 || std::any_of(hist + 1, hist + H, [](double h) { return h != 0.0; }))
-              std::fill_n(hist, H, 0.0);
+            if (pc.may_touch) std::fill_n(nl.history.data() + static_cast<std::size_t>(k) * H, H, 0.0);
+          pc.may_touch = false;
           continue;
         }
+        pc.may_touch = true;
+        double* hist = H > 0 ? nl.history.data() + static_cast<std::size_t>(k) * H : nullptr;
         // Sphere-sphere geometry (as contact::sphere_sphere, with R* from the list).
         contact::ContactGeometry g;
         const double dist = std::sqrt(d2);

@@ -153,7 +153,9 @@ void NeighborList::compute_pair_constants(const ParticleStore& p) {
     for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
       const auto j = partner[k];
       const double rs = p.radius[i] + p.radius[j];
-      pair_constants[k] = {rs * rs, p.radius[i] * p.radius[j] / rs, p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j])};
+      // may_touch starts true: history carried over (or restored) may be non-zero.
+      pair_constants[k] = {rs * rs, p.radius[i] * p.radius[j] / rs, p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]),
+                           true};
     }
 }
 

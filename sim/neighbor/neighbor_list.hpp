@@ -47,8 +47,11 @@ class NeighborList {
   /// Per-entry constants of a sphere pair, computed at build time: the
   /// squared contact distance (ri + rj)^2, R* and m*. They never change
   /// between builds, so the force loop does no divisions for them.
+  /// `may_touch` is false only when the pair is known apart with zero
+  /// history, so the force loop skips its history for non-touching pairs.
   struct PairConstants {
     double contact2, radius, mass;
+    bool may_touch;
   };
   std::vector<PairConstants> pair_constants;
   std::vector<std::vector<std::uint32_t>> plane_near, cylinder_near;  // per wall

@@ -44,9 +44,17 @@ void dispatch_rolling(Pipeline& p, const SceneNeeds& n) {
 }
 
 template <bool Rot>
-void add_integrator(Pipeline& p) {
+void add_clear(Pipeline& p, bool gravity) {
+  if (gravity)
+    p.add(std::make_unique<ClearForces<Rot, true>>());
+  else
+    p.add(std::make_unique<ClearForces<Rot, false>>());
+}
+
+template <bool Rot>
+void add_integrator(Pipeline& p, bool gravity) {
   p.add(std::make_unique<VerletDrift<Rot>>());
-  p.add(std::make_unique<ClearForces<Rot>>());
+  add_clear<Rot>(p, gravity);
   p.add(std::make_unique<VerletKick<Rot>>());
 }
 
@@ -57,16 +65,15 @@ Pipeline assemble_pipeline(const Scene& s, const SceneConfig& c) {
   Pipeline p;
   if (n.ellipsoids) {
     p.add(std::make_unique<RigidBodyDrift>());
-    p.add(std::make_unique<ClearForces<true>>());
+    add_clear<true>(p, n.gravity);
     p.add(std::make_unique<RigidBodyKick>());
   } else if (n.rotation) {
-    add_integrator<true>(p);
+    add_integrator<true>(p, n.gravity);
   } else {
-    add_integrator<false>(p);
+    add_integrator<false>(p, n.gravity);
   }
   if (n.moving_walls) p.add(std::make_unique<MoveWalls>());
   p.add(std::make_unique<NeighborStage>(c.sort_particles));
-  if (n.gravity) p.add(std::make_unique<Gravity>());
   if (n.tangential)
     dispatch_rolling<MindlinTangential>(p, n);
   else

@@ -30,7 +30,7 @@ std::vector<EffectDoc> scene_docs() {
   d.push_back({"domain", "domain: {...}",
                "The box particles live in; a particle that leaves it is removed and counted in the summary.",
                {key("min", K::Vec3, "lower corner").req().si("m"), key("max", K::Vec3, "upper corner").req().si("m")}});
-  d.push_back({"force.gravity", "gravity: [gx, gy, gz]", "Uniform gravity, F = m g. A stage only when non-zero.",
+  d.push_back({"force.gravity", "gravity: [gx, gy, gz]", "Uniform gravity, F = m g, applied where forces are cleared each step; absent or zero costs nothing.",
                {key("gravity", K::Vec3, "acceleration").si("m/s^2")}});
   d.push_back({"particles", "particles: [ {...}, ... ]", "A set of spherical particles.",
                {key("name", K::String, "label").def("set<k>"),

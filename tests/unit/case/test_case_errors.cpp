@@ -151,6 +151,9 @@ TEST(CaseErrors, SetOverridesAreValidatedAndLocated) {
             std::string::npos) << m;
   const auto i = errors_of(kGood, {"materials.3.friction=0.1"});
   EXPECT_NE(i.find("'3' is not an index of the list (it has 1 entries"), std::string::npos) << i;
+  // A section the case does not have is created by the override.
+  auto g = parse_case(kGood, "case.yaml", {"contact.rolling=none"});
+  EXPECT_EQ(g.scene.rolling, sim::SlotChoice::None);
   const auto f = errors_of(kGood, {"time.end"});
   EXPECT_NE(f.find("expected key.path=value"), std::string::npos) << f;
 }

@@ -41,8 +41,7 @@ walls:
                                       "t.yaml"));
   const std::vector<std::string> stages{"drift: verlet.kick_drift+rotation",
                                         "neighbor: neighbor.verlet_list(skin trigger)",
-                                        "force: force.clear+torque",
-                                        "force: force.gravity",
+                                        "force: force.clear+torque+gravity",
                                         "force: force.pair_contacts<hertz+tangential:mindlin+rolling:none+cohesion:none>",
                                         "force: force.plane_walls<hertz+tangential:mindlin+rolling:none+cohesion:none>",
                                         "force: force.cylinder_walls<hertz+tangential:mindlin+rolling:none+cohesion:none>",
