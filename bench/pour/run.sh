@@ -17,6 +17,7 @@ HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(cd "$HERE/../.." && pwd)"
 BUILD="${BUILD:-$ROOT/build-bench}"
 WORK="${WORK:-$BUILD/bench-pour}"
+mkdir -p "$WORK"; WORK="$(cd "$WORK" && pwd)"  # absolute: LIGGGHTS runs from a sub-folder
 LIGGGHTS="${LIGGGHTS:-liggghts}"
 CASE="${CASE:-$ROOT/cases/pour_spheres/case.yaml}"
 export OMP_NUM_THREADS=1   # serial comparison

@@ -40,30 +40,31 @@ class PairContactStage final : public Stage {
         }
         pc.may_touch = true;
         double* hist = H > 0 ? nl.history.data() + static_cast<std::size_t>(k) * H : nullptr;
-        // Sphere-sphere geometry (as contact::sphere_sphere, with R* from the list).
+        // Sphere-sphere geometry (as contact::sphere_sphere, with R* and m*
+        // from the list). The contact point lies on the line of centres, so
+        // the lever arms are -li n and +lj n: one cross product each for the
+        // relative velocity and the torques.
         contact::ContactGeometry g;
         const double dist = std::sqrt(d2);
         g.normal = dist > 0 ? Vec3(d * (1.0 / dist)) : Vec3(0, 0, 1);
         g.overlap = ri + p.radius[j] - dist;
-        g.point = p.x[j] + g.normal * (p.radius[j] - 0.5 * g.overlap);
         g.radius = pc.radius;
         const double m = pc.mass;
         const PairParams& pp = s.pairs(p.material[i], p.material[j]);
+        const double li = ri - 0.5 * g.overlap, lj = p.radius[j] - 0.5 * g.overlap;
         Vec3 v_rel = p.v[i] - p.v[j];
         Vec3 w_rel = Vec3::Zero();
-        Vec3 ci, cj;
         if constexpr (Law::needs_rotation) {
-          ci = g.point - xi;
-          cj = g.point - p.x[j];
-          v_rel += p.omega[i].cross(ci) - p.omega[j].cross(cj);
+          v_rel -= (li * p.omega[i] + lj * p.omega[j]).cross(g.normal);
           w_rel = p.omega[i] - p.omega[j];
         }
         const auto r = Law::evaluate(g, v_rel, w_rel, m, pp, dt, hist);
         p.f[i] += r.force;
         p.f[j] -= r.force;
         if constexpr (Law::needs_rotation) {
-          p.torque[i] += ci.cross(r.force) + r.rolling_torque;
-          p.torque[j] -= cj.cross(r.force) + r.rolling_torque;
+          const Vec3 nxf = g.normal.cross(r.force);
+          p.torque[i] += r.rolling_torque - li * nxf;
+          p.torque[j] -= r.rolling_torque + lj * nxf;
         }
       }
     }
