@@ -234,20 +234,8 @@ class CaseParser {
 
   void parse_placement(const YAML::Node& n, sim::ParticleSetConfig& p, const std::string& ctx0) {
     const auto ctx = ctx0 + ".placement";
-    if (!n.IsMap()) {
-      v_.error(n, ctx, "expected a map with a type (random_fill, lattice or file)");
-      return;
-    }
+    if (!check_type(n, ctx, "placement", {"random_fill", "lattice", "file"})) return;
     const YAML::Node t = n["type"];
-    static const std::vector<std::string> kinds{"random_fill", "lattice", "file"};
-    if (!t || !t.IsScalar() || std::find(kinds.begin(), kinds.end(), t.Scalar()) == kinds.end()) {
-      const std::string got = t && t.IsScalar() ? t.Scalar() : "";
-      const std::string guess = closest(got, kinds);
-      v_.error(t ? t : n, ctx,
-               (t ? "placement type '" + got + "' is not valid" : std::string("missing required key 'type'")) +
-                   (guess.empty() ? "" : "; did you mean '" + guess + "'?") + " valid: random_fill, lattice, file");
-      return;
-    }
     const auto& d = doc("placement." + t.Scalar());
     if (!v_.check_map(n, d, ctx)) return;
     auto& pl = p.placement;
@@ -358,6 +346,30 @@ class CaseParser {
     v_.error(o, ctx, "orientation must be 'random' or a quaternion [w, x, y, z]");
   }
 
+  // The `type` key that selects which keys a map may have: present, a
+  // string, one of `kinds`; otherwise an error with a suggestion.
+  bool check_type(const YAML::Node& n, const std::string& ctx, const std::string& what,
+                  const std::vector<std::string>& kinds) {
+    if (!n.IsMap()) {
+      v_.error(n, ctx, "expected a map with a type (" + join_words(kinds) + ")");
+      return false;
+    }
+    const YAML::Node t = n["type"];
+    if (t && t.IsScalar() && std::find(kinds.begin(), kinds.end(), t.Scalar()) != kinds.end()) return true;
+    const std::string got = t && t.IsScalar() ? t.Scalar() : "";
+    const std::string guess = closest(got, kinds);
+    v_.error(t ? t : n, ctx,
+             (t ? what + " type '" + got + "' is not valid" : std::string("missing required key 'type'")) +
+                 (guess.empty() ? "" : "; did you mean '" + guess + "'?") + " valid: " + join_words(kinds));
+    return false;
+  }
+
+  static std::string join_words(const std::vector<std::string>& w) {
+    std::string s;
+    for (const auto& x : w) s += (s.empty() ? "" : ", ") + x;
+    return s;
+  }
+
   void parse_particles(const YAML::Node& n) {
     if (!n) return;
     if (!n.IsSequence() || n.size() == 0) {
@@ -393,15 +405,8 @@ class CaseParser {
     for (std::size_t i = 0; i < n.size(); ++i) {
       const auto ctx = idx("walls", i);
       const YAML::Node w = n[i];
-      const YAML::Node t = w.IsMap() ? w["type"] : YAML::Node();
-      if (!t || !t.IsScalar() || (t.Scalar() != "plane" && t.Scalar() != "cylinder")) {
-        const std::string got = t && t.IsScalar() ? t.Scalar() : "";
-        const std::string guess = closest(got, {"plane", "cylinder"});
-        v_.error(t ? t : w, ctx,
-                 (t ? "wall type '" + got + "' is not valid" : std::string("missing required key 'type'")) +
-                     (guess.empty() ? "" : "; did you mean '" + guess + "'?") + " valid: plane, cylinder");
-        continue;
-      }
+      if (!check_type(w, ctx, "wall", {"plane", "cylinder"})) continue;
+      const YAML::Node t = w["type"];
       const auto& d = doc("walls." + t.Scalar());
       if (!v_.check_map(w, d, ctx)) continue;
       const std::string name = v_.string(w, d, "name", ctx, t.Scalar() + std::to_string(i));
