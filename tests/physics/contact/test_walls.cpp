@@ -59,3 +59,43 @@ time: {dt_rayleigh: 0.05, end: 0.03}
 
 }  // namespace
 }  // namespace grains::test
+
+namespace grains::test {
+namespace {
+
+// Rolling resistance (EPSD, fully mobilised): a sphere rolling on a floor
+// feels the torque mu_r R F_n = mu_r R m g against its rotation; rolling
+// without slip it decelerates at a = mu_r g / (1 + I/(m R^2)) = 5/7 mu_r g.
+// Without rolling friction it keeps rolling at constant speed.
+double rolling_deceleration(double mu_r) {
+  const double R = 0.001, v0 = 0.05;
+  std::ostringstream y;
+  y.precision(17);
+  y << "domain: {min: [-0.05, -0.01, -0.001], max: [0.2, 0.01, 0.01]}\ngravity: [0, 0, -9.81]\n"
+    << "materials:\n" << material("m", 2500, 1e7, 0.3, 0.5, 0.5, mu_r)
+    << "particles:\n" << single("ball", "m", sim::Vec3(0, 0, R * 0.99995), R, sim::Vec3(v0, 0, 0))
+    << "walls:\n  - {type: plane, point: [0, 0, 0], normal: [0, 0, 1], material: m}\n"
+    << "time: {dt_rayleigh: 0.1, end: 0.4}\n";
+  auto s = from_yaml(y.str());
+  s.scene.particles.omega[0] = sim::Vec3(0, v0 / R, 0);  // rolling without slip
+  s.pipeline.initialize(s.scene);
+  // Let the contact settle, then measure the speed change over a window.
+  double t1 = 0, v1 = 0;
+  while (s.scene.clock.step < s.scene.clock.n_steps) {
+    s.pipeline.step(s.scene);
+    if (t1 == 0 && s.scene.clock.time >= 0.05) {
+      t1 = s.scene.clock.time;
+      v1 = s.scene.particles.v[0].x();
+    }
+  }
+  return (v1 - s.scene.particles.v[0].x()) / (s.scene.clock.time - t1);
+}
+
+TEST(RollingResistance, EpsdDeceleratesARollingSphereAtFiveSeventhsMuRG) {
+  const double mu_r = 0.01;
+  EXPECT_NEAR(rolling_deceleration(mu_r) / (5.0 / 7.0 * mu_r * 9.81), 1.0, 0.05);
+  EXPECT_NEAR(rolling_deceleration(0.0), 0.0, 1e-3);
+}
+
+}  // namespace
+}  // namespace grains::test
