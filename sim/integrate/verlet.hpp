@@ -12,34 +12,53 @@
 
 namespace grains::sim {
 
-template <bool Rotation>
+// SkipClumpBalls (scenes with clumps only): balls of a clump are moved by
+// their body (integrate/clump_bodies.hpp), not here.
+template <bool Rotation, bool SkipClumpBalls = false>
 inline void verlet_half_kick(ParticleStore& p, double half_dt) {
   const std::size_t n = p.n_owned();
-  for (std::size_t i = 0; i < n; ++i) p.v[i] += (half_dt * p.inv_mass[i]) * p.f[i];
+  for (std::size_t i = 0; i < n; ++i) {
+    if constexpr (SkipClumpBalls)
+      if (p.body[i] >= 0) continue;
+    p.v[i] += (half_dt * p.inv_mass[i]) * p.f[i];
+  }
   if constexpr (Rotation)
-    for (std::size_t i = 0; i < n; ++i) p.omega[i] += (half_dt / p.inertia[i].x()) * p.torque[i];
+    for (std::size_t i = 0; i < n; ++i) {
+      if constexpr (SkipClumpBalls)
+        if (p.body[i] >= 0) continue;
+      p.omega[i] += (half_dt / p.inertia[i].x()) * p.torque[i];
+    }
 }
 
-template <bool Rotation>
+template <bool Rotation, bool SkipClumpBalls = false>
 class VerletDrift final : public Stage {
  public:
-  std::string name() const override { return Rotation ? "verlet.kick_drift+rotation" : "verlet.kick_drift"; }
+  std::string name() const override {
+    return std::string(Rotation ? "verlet.kick_drift+rotation" : "verlet.kick_drift") +
+           (SkipClumpBalls ? "(free particles)" : "");
+  }
   Phase phase() const override { return Phase::Drift; }
   void run(Scene& s) override {
     ParticleStore& p = s.particles;
     const double dt = s.clock.dt;
-    verlet_half_kick<Rotation>(p, 0.5 * dt);
+    verlet_half_kick<Rotation, SkipClumpBalls>(p, 0.5 * dt);
     const std::size_t n = p.n_owned();
-    for (std::size_t i = 0; i < n; ++i) p.x[i] += dt * p.v[i];
+    for (std::size_t i = 0; i < n; ++i) {
+      if constexpr (SkipClumpBalls)
+        if (p.body[i] >= 0) continue;
+      p.x[i] += dt * p.v[i];
+    }
   }
 };
 
-template <bool Rotation>
+template <bool Rotation, bool SkipClumpBalls = false>
 class VerletKick final : public Stage {
  public:
-  std::string name() const override { return Rotation ? "verlet.kick+rotation" : "verlet.kick"; }
+  std::string name() const override {
+    return std::string(Rotation ? "verlet.kick+rotation" : "verlet.kick") + (SkipClumpBalls ? "(free particles)" : "");
+  }
   Phase phase() const override { return Phase::Kick; }
-  void run(Scene& s) override { verlet_half_kick<Rotation>(s.particles, 0.5 * s.clock.dt); }
+  void run(Scene& s) override { verlet_half_kick<Rotation, SkipClumpBalls>(s.particles, 0.5 * s.clock.dt); }
 };
 
 /// Moves walls with their prescribed velocities (only when some wall moves).

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <type_traits>
 
 namespace grains::sim {
 
@@ -81,6 +82,10 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   static const int stencil[14][3] = {{0, 0, 0},  {1, 0, 0},  {-1, 1, 0}, {0, 1, 0},  {1, 1, 0},
                                      {-1, -1, 1}, {0, -1, 1}, {1, -1, 1}, {-1, 0, 1}, {0, 0, 1},
                                      {1, 0, 1},  {-1, 1, 1}, {0, 1, 1},  {1, 1, 1}};
+  // Balls of the same clump never interact: in scenes with clumps (the
+  // `body` field exists) their pairs are left out here, by a separate
+  // instantiation of the loop, so sphere scenes pay nothing for the check.
+  auto collect = [&](auto exclude_same_body) {
   for (int cz = 0; cz < dims[2]; ++cz)
     for (int cy = 0; cy < dims[1]; ++cy)
       for (int cx = 0; cx < dims[0]; ++cx) {
@@ -94,6 +99,8 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
             const auto b0 = s == 0 ? a + 1 : cell_start[c2];
             for (auto b = b0; b < cell_start[c2 + 1]; ++b) {
               const std::size_t j = order[b];
+              if constexpr (decltype(exclude_same_body)::value)
+                if (p.body[i] >= 0 && p.body[i] == p.body[j]) continue;
               const double cut = p.radius[i] + p.radius[j] + skin_;
               if ((p.x[i] - p.x[j]).squaredNorm() < cut * cut) {
                 const bool i_first = p.id[i] < p.id[j];
@@ -104,6 +111,11 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
           }
         }
       }
+  };
+  if (p.fields().has(Field::Body))
+    collect(std::true_type{});
+  else
+    collect(std::false_type{});
   // Counting sort of the pairs into rows.
   row_start.assign(n + 1, 0);
   for (auto i : pi) ++row_start[i + 1];

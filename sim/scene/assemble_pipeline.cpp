@@ -1,6 +1,7 @@
 // Assembles the step pipeline from what the scene needs. The law slots are
 // chosen here once, at run time, and each choice is a separate template
 // instantiation, so the per-contact kernels carry no flags.
+#include "sim/integrate/clump_bodies.hpp"
 #include "sim/integrate/rigid_body.hpp"
 #include "sim/integrate/verlet.hpp"
 #include "sim/laws/ellipsoid_pair_stage.hpp"
@@ -43,19 +44,37 @@ void dispatch_rolling(Pipeline& p, const SceneNeeds& n) {
     dispatch_cohesion<T, NoRolling>(p, n);
 }
 
-template <bool Rot>
+template <bool Rot, bool Clumps = false>
 void add_clear(Pipeline& p, bool gravity) {
   if (gravity)
-    p.add(std::make_unique<ClearForces<Rot, true>>());
+    p.add(std::make_unique<ClearForces<Rot, true, Clumps>>());
   else
-    p.add(std::make_unique<ClearForces<Rot, false>>());
+    p.add(std::make_unique<ClearForces<Rot, false, Clumps>>());
 }
 
-template <bool Rot>
+template <bool Rot, bool Clumps>
 void add_integrator(Pipeline& p, bool gravity) {
-  p.add(std::make_unique<VerletDrift<Rot>>());
-  add_clear<Rot>(p, gravity);
-  p.add(std::make_unique<VerletKick<Rot>>());
+  p.add(std::make_unique<VerletDrift<Rot, Clumps>>());
+  add_clear<Rot, Clumps>(p, gravity);
+  p.add(std::make_unique<VerletKick<Rot, Clumps>>());
+}
+
+template <bool Clumps>
+void add_integrators(Pipeline& p, const SceneNeeds& n) {
+  if (n.ellipsoids) {
+    p.add(std::make_unique<RigidBodyDrift>());
+    add_clear<true, Clumps>(p, n.gravity);
+    p.add(std::make_unique<RigidBodyKick>());
+  } else if (n.rotation) {
+    add_integrator<true, Clumps>(p, n.gravity);
+  } else {
+    add_integrator<false, Clumps>(p, n.gravity);
+  }
+  // The bodies after the particles in each phase: they place their balls last.
+  if constexpr (Clumps) {
+    p.add(std::make_unique<ClumpDrift>());
+    p.add(std::make_unique<ClumpKick>());
+  }
 }
 
 }  // namespace
@@ -63,21 +82,17 @@ void add_integrator(Pipeline& p, bool gravity) {
 Pipeline assemble_pipeline(const Scene& s, const SceneConfig& c) {
   const SceneNeeds n = scene_needs(c, s.pairs);
   Pipeline p;
-  if (n.ellipsoids) {
-    p.add(std::make_unique<RigidBodyDrift>());
-    add_clear<true>(p, n.gravity);
-    p.add(std::make_unique<RigidBodyKick>());
-  } else if (n.rotation) {
-    add_integrator<true>(p, n.gravity);
-  } else {
-    add_integrator<false>(p, n.gravity);
-  }
+  if (n.clumps)
+    add_integrators<true>(p, n);
+  else
+    add_integrators<false>(p, n);
   if (n.moving_walls) p.add(std::make_unique<MoveWalls>());
   p.add(std::make_unique<NeighborStage>(c.sort_particles));
   if (n.tangential)
     dispatch_rolling<MindlinTangential>(p, n);
   else
     dispatch_rolling<NoTangential>(p, n);
+  if (n.clumps) p.add(std::make_unique<ClumpForces>());  // last of the force phase
   return p;
 }
 

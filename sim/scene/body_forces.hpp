@@ -6,11 +6,15 @@ namespace grains::sim {
 
 /// Starts the force accumulation: F = 0, or F = m g when the scene has
 /// gravity (one pass instead of two), and T = 0 when the scene rotates.
-template <bool Rotation, bool WithGravity = false>
+/// In scenes with clumps (Clumps = true) the balls of a clump start at
+/// F = 0: their mass field holds the body's mass (for m* of contacts), and
+/// gravity acts on the body (BodyForces), not on its balls.
+template <bool Rotation, bool WithGravity = false, bool Clumps = false>
 class ClearForces final : public Stage {
  public:
   std::string name() const override {
-    return std::string("force.clear") + (Rotation ? "+torque" : "") + (WithGravity ? "+gravity" : "");
+    return std::string("force.clear") + (Rotation ? "+torque" : "") + (WithGravity ? "+gravity" : "") +
+           (Clumps ? "(clump balls: 0)" : "");
   }
   Phase phase() const override { return Phase::Force; }
   void run(Scene& s) override {
@@ -18,7 +22,11 @@ class ClearForces final : public Stage {
     if constexpr (WithGravity) {
       const Vec3 g = s.gravity;
       const std::size_t n = p.n_owned();
-      for (std::size_t i = 0; i < n; ++i) p.f[i] = p.mass[i] * g;
+      if constexpr (Clumps) {
+        for (std::size_t i = 0; i < n; ++i) p.f[i] = p.body[i] >= 0 ? Vec3::Zero() : Vec3(p.mass[i] * g);
+      } else {
+        for (std::size_t i = 0; i < n; ++i) p.f[i] = p.mass[i] * g;
+      }
       for (std::size_t i = n; i < p.size(); ++i) p.f[i].setZero();
     } else {
       for (auto& f : p.f) f.setZero();

@@ -6,6 +6,7 @@
 
 #include "contact/ellipsoid/ellipsoid.hpp"
 #include "sim/scene/placement.hpp"
+#include "sim/integrate/clump_bodies.hpp"
 
 namespace grains::sim {
 
@@ -18,6 +19,35 @@ Quat random_orientation(std::mt19937_64& rng) {
   return Quat(a * std::sin(u2), a * std::cos(u2), b * std::sin(u3), b * std::cos(u3)).normalized();
 }
 bool choose(SlotChoice c, bool automatic) { return c == SlotChoice::Auto ? automatic : c == SlotChoice::On; }
+
+// One clump of bounding radius q.r at q.x: a body and its balls. The balls'
+// mass field holds the body's mass (m* of their contacts).
+void add_clump(Scene& s, const ParticleSetConfig& set, const PlacedParticle& q, std::int64_t& gid,
+               std::mt19937_64& rng, const SceneNeeds& need) {
+  const ClumpShape& c = *set.shape.clump;
+  const double rho = s.materials[set.material].density, sc = q.r;
+  const Quat o = set.shape.random_orientation ? random_orientation(rng) : set.shape.orientation;
+  const Eigen::Matrix3d R = o.toRotationMatrix();
+  const double m = rho * c.volume * sc * sc * sc;
+  const auto body_id = static_cast<std::int64_t>(s.bodies.size());
+  s.bodies.add(body_id, q.x, set.velocity, o, m, rho * std::pow(sc, 5) * c.inertia, c.volume * sc * sc * sc,
+               static_cast<int>(c.radii.size()));
+  auto& p = s.particles;
+  for (std::size_t k = 0; k < c.radii.size(); ++k) {
+    const Vec3 off = sc * c.centres[k];
+    const Vec3 x = q.x + R * off;
+    if (!s.domain.contains(x)) {
+      std::ostringstream e;
+      e << set.where << ": clump " << q.index_in_set << " of set '" << set.name << "' has a ball at (" << x.transpose()
+        << ") outside the domain; move it or enlarge domain";
+      throw SetupError(e.str());
+    }
+    const auto i = p.add(gid++, x, set.velocity, sc * c.radii[k], m, set.material, kSphere);
+    p.body[i] = body_id;
+    p.body_offset[i] = off;
+    if (need.ellipsoids) p.orientation[i] = o;
+  }
+}
 }  // namespace
 
 SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs) {
@@ -25,7 +55,10 @@ SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs) {
   n.tangential = choose(c.tangential, pairs.any_friction());
   n.rolling = choose(c.rolling, pairs.any_rolling());
   n.cohesion = choose(c.cohesion, pairs.any_cohesion());
-  for (const auto& s : c.sets) n.ellipsoids = n.ellipsoids || s.shape.kind == ShapeConfig::Kind::Ellipsoid;
+  for (const auto& s : c.sets) {
+    n.ellipsoids = n.ellipsoids || s.shape.kind == ShapeConfig::Kind::Ellipsoid;
+    n.clumps = n.clumps || s.shape.kind == ShapeConfig::Kind::Clump;
+  }
   n.rotation = n.tangential || n.rolling || n.ellipsoids;
   n.gravity = c.gravity.squaredNorm() > 0;
   n.planes = !c.walls.planes.empty();
@@ -36,6 +69,7 @@ SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs) {
   if (n.history_size > 0 && c.walls.count() > 0) n.fields |= Field::WallHistory;
   if (n.ellipsoids)
     n.fields |= FieldSet(Field::Orientation) | Field::AngularMomentum | Field::SemiAxes | Field::ShapeForm;
+  if (n.clumps) n.fields |= Field::Body;
   return n;
 }
 
@@ -46,6 +80,10 @@ double rayleigh_time(const SceneConfig& c) {
     double r = s.placement.radii.empty() ? s.size.smallest()
                                          : *std::min_element(s.placement.radii.begin(), s.placement.radii.end());
     r *= s.shape.bounding_factor * s.shape.axes_rel.minCoeff();  // the smallest semi-axis
+    // A clump: the radius of the sphere of equal volume. Its balls are
+    // smaller, but each carries the whole body's mass, and the Hertz contact
+    // time grows with m*^(2/5) and falls only with R*^(1/5) (docs/physics.md).
+    if (s.shape.kind == ShapeConfig::Kind::Clump) r *= std::cbrt(3 * s.shape.clump->volume / (4 * M_PI));
     const double tr = M_PI * r * std::sqrt(m.density / m.shear_modulus()) / (0.1631 * m.poisson_ratio + 0.8766);
     t = std::min(t, tr);
   }
@@ -99,6 +137,10 @@ Scene build_scene(SceneConfig& c) {
   for (const auto& set : c.sets) orient_rng.emplace_back(set.placement.seed ^ 0x9E3779B97F4A7C15ull);
   for (const auto& q : placed) {
     const auto& set = c.sets[q.set];
+    if (set.shape.kind == ShapeConfig::Kind::Clump) {
+      add_clump(s, set, q, gid, orient_rng[q.set], need);
+      continue;
+    }
     const bool ell = set.shape.kind == ShapeConfig::Kind::Ellipsoid;
     const Vec3 axes = q.r * set.shape.axes_rel;
     const double m = c.materials[set.material].density * 4.0 / 3.0 * M_PI * axes.prod();
@@ -126,6 +168,7 @@ Scene build_scene(SceneConfig& c) {
         throw SetupError("wall '" + w.name + "': ellipsoids against the outside of a cylinder are not supported; "
                          "use inside: true or spheres");
 
+  if (need.clumps) place_clump_balls(s.particles, s.bodies, true);
   double rmax = 0;
   for (const auto r : s.particles.radius) rmax = std::max(rmax, r);
   // Ellipsoid scenes keep the PW85 lambda of each pair after the law's history.

@@ -13,6 +13,7 @@ struct SceneNeeds {
   bool tangential = false, rolling = false, cohesion = false;
   bool rotation = false;
   bool ellipsoids = false;  // some particle is non-spherical: rigid-body integrator, shape dispatch
+  bool clumps = false;      // some set is made of rigid clumps: body field, BodyStore and its stages
   bool gravity = false, planes = false, cylinders = false, moving_walls = false;
   int history_size = 0;  // per contact
   FieldSet fields;

@@ -7,6 +7,7 @@
 
 #include "sim/laws/material.hpp"
 #include "sim/neighbor/neighbor_list.hpp"
+#include "sim/state/body_store.hpp"
 #include "sim/state/particle_store.hpp"
 #include "sim/walls/walls.hpp"
 
@@ -31,6 +32,7 @@ struct Clock {
 struct Scene {
   Domain domain;
   ParticleStore particles;
+  BodyStore bodies;  // rigid clumps; empty unless the scene has clumps
   Walls walls;
   std::vector<Material> materials;
   PairTable pairs;

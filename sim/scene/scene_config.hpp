@@ -3,6 +3,7 @@
 // sim. Every value here is in SI units and already range-checked; `where`
 // strings (file:line:column) let set-up errors point back at the case file.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,8 +49,22 @@ struct Placement {
 /// bounding_factor. With `aspect_ratio: alpha` the radius is the volume-
 /// equivalent radius and the axes are r (alpha^{2/3}, alpha^{-1/3}, alpha^{-1/3})
 /// (prolate along the body x axis for alpha > 1, oblate for alpha < 1).
+/// A clump shape for a particle set, normalised to a bounding radius of 1:
+/// the balls in the principal body frame about the centre of mass, and the
+/// mass properties of the union of the balls per unit density (from
+/// contact/clump's ClumpTemplate). A clump of bounding radius s has balls
+/// s c_k, s r_k, volume s^3 volume, principal inertia rho s^5 inertia.
+struct ClumpShape {
+  std::vector<Vec3> centres;   // body frame, |c| + r <= 1
+  std::vector<double> radii;
+  double volume = 0;           // of the union of balls
+  Vec3 inertia{0, 0, 0};       // principal moments per unit density, ascending
+  std::string source;          // clump file or mesh (for messages)
+};
+
 struct ShapeConfig {
-  enum class Kind { Sphere, Ellipsoid } kind = Kind::Sphere;
+  enum class Kind { Sphere, Ellipsoid, Clump } kind = Kind::Sphere;
+  std::shared_ptr<const ClumpShape> clump;  // Kind::Clump
   Vec3 axes_rel{1, 1, 1};      // semi-axes / bounding radius (largest entry 1)
   double bounding_factor = 1;  // bounding radius / size-distribution radius
   bool random_orientation = true;

@@ -21,6 +21,10 @@ std::vector<std::string> ParticleStore::field_names() const {
   if (fields_.has(Field::AngularMomentum)) n.emplace_back("angular_momentum");
   if (fields_.has(Field::SemiAxes)) n.emplace_back("semi_axes");
   if (fields_.has(Field::ShapeForm)) n.emplace_back("shape_form");
+  if (fields_.has(Field::Body)) {
+    n.emplace_back("body");
+    n.emplace_back("body_offset");
+  }
   return n;
 }
 
@@ -47,6 +51,10 @@ std::size_t ParticleStore::add(std::int64_t gid, const Vec3& xi, const Vec3& vi,
   if (fields_.has(Field::AngularMomentum)) angular_momentum.push_back(Vec3::Zero());
   if (fields_.has(Field::SemiAxes)) semi_axes.push_back(Vec3(r, r, r));
   if (fields_.has(Field::ShapeForm)) form.push_back({r * r, 0, 0, r * r, 0, r * r});
+  if (fields_.has(Field::Body)) {
+    body.push_back(-1);
+    body_offset.push_back(Vec3::Zero());
+  }
   return n_owned_++;
 }
 
@@ -68,6 +76,10 @@ void ParticleStore::add_ghost(const ParticleStore& from, std::size_t s, const Ve
   if (fields_.has(Field::AngularMomentum)) angular_momentum.push_back(from.angular_momentum[s]);
   if (fields_.has(Field::SemiAxes)) semi_axes.push_back(from.semi_axes[s]);
   if (fields_.has(Field::ShapeForm)) form.push_back(from.form[s]);
+  if (fields_.has(Field::Body)) {
+    body.push_back(from.body[s]);
+    body_offset.push_back(from.body_offset[s]);
+  }
 }
 
 void ParticleStore::clear_ghosts() {

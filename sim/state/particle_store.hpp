@@ -38,6 +38,7 @@ enum class Field : std::uint32_t {
   AngularMomentum = 1u << 5,  // world frame; integrated for non-spherical bodies
   SemiAxes = 1u << 6,         // ellipsoid semi-axes (body frame); spheres: (r, r, r)
   ShapeForm = 1u << 7,        // PW85 form Q = R diag(a^2) R^T, packed upper triangle, kept in step
+  Body = 1u << 8,             // clump membership: body id (-1: free particle) and body-frame offset
 };
 
 /// Shape kinds stored in ParticleStore::shape.
@@ -94,6 +95,8 @@ class ParticleStore {
   std::vector<double> wall_history;  // size() * wall_history_size()
   std::vector<Vec3> angular_momentum, semi_axes;
   std::vector<std::array<double, 6>> form;
+  std::vector<std::int64_t> body;  // id of the clump this ball belongs to, -1 for a free particle
+  std::vector<Vec3> body_offset;   // ball centre - body centre of mass, in the body frame
 
   /// Applies fn(name, unit, vector&, width) to every allocated per-particle
   /// array, core first; width is the number of entries per particle. This is
@@ -112,6 +115,10 @@ class ParticleStore {
     if (fields_.has(Field::AngularMomentum)) fn("angular_momentum", "kg m^2/s", angular_momentum, 1);
     if (fields_.has(Field::SemiAxes)) fn("semi_axes", "m", semi_axes, 1);
     if (fields_.has(Field::ShapeForm)) fn("shape_form", "m^2", form, 1);
+    if (fields_.has(Field::Body)) {
+      fn("body", "", body, 1);
+      fn("body_offset", "m", body_offset, 1);
+    }
   }
 
  private:
