@@ -78,11 +78,33 @@ bool all_finite(const double* p, int n) {
 // (seed 000, eq. 13) are A1 = (1-l)^2 a and A2 = l^2 b, f = l A1 + (1-l) A2
 // and f' = A1 - A2.
 struct Eval {
-  double f, df, d2f;  // f, f', f'' with respect to lambda
+  double f, df;       // f, f' with respect to lambda
   double ell, dell;   // ell = log(A1/A2) and d ell / du, u = log(l/(1-l))
+  double g, t, a, b;  // r^T x, v^T Q^{-1} v with v = (Q2-Q1) x, a, b: for f''
   Vector3d x;         // Q(lambda)^{-1} r
   Vector3d w;         // Q(lambda)^{-1} (Q2 - Q1) x  (so dx/dlambda = -w)
 };
+
+// log(A1/A2) from z = (A1 - A2)/(A1 + A2) = tanh(ell/2): ell = 2 atanh(z).
+// Near the root (|z| small, every iteration but the first one or two) the
+// series of atanh replaces the call to log; its relative error (< 1e-11 for
+// |z| < 0.1, < 2e-13 for |z| < 1e-2) only perturbs the Newton step by that
+// fraction of itself, which keeps the convergence quadratic.
+inline double log_ratio(double a1, double a2, double d) {
+  const double z = d / (a1 + a2);
+  const double z2 = z * z;
+  if (z2 < 1e-4) return 2.0 * z * (1.0 + z2 * (1.0 / 3.0 + z2 * 0.2));
+  if (z2 < 1e-2) return 2.0 * z * (1.0 + z2 * (1.0 / 3.0 + z2 * (0.2 + z2 * (1.0 / 7.0 + z2 * (1.0 / 9.0)))));
+  return std::log(a1 / a2);
+}
+
+// exp(s) for the Newton update of t = lambda/(1-lambda); the Taylor form for
+// small steps (relative error < 3e-9 for |s| < 0.05: the new point moves by
+// that much in u, far less than the Newton error it leaves).
+inline double exp_step(double s) {
+  if (std::abs(s) < 0.05) return 1.0 + s * (1.0 + s * (0.5 + s * (1.0 / 6.0 + s * (1.0 / 24.0))));
+  return std::exp(s);
+}
 
 // lam and lc = 1 - lam are passed separately so that both keep full relative
 // precision near either end. Returns false when Q(lambda) is numerically singular.
@@ -92,20 +114,25 @@ inline bool evaluate(double lam, double lc, const Vector3d& r, const double* q1,
   for (int i = 0; i < 6; ++i) q[i] = lc * q1[i] + lam * q2[i];
   Ldl fac;
   if (!factor(q, fac)) return false;
-  double g;
-  e.x = solve(fac, r, g);
+  e.x = solve(fac, r, e.g);
   const Vector3d q1x = mul(q1, e.x), q2x = mul(q2, e.x);
   const double a = e.x.dot(q1x), b = e.x.dot(q2x);
+  e.a = a;
+  e.b = b;
   const double ll = lam * lc;
-  e.f = ll * g;
-  e.df = lc * lc * a - lam * lam * b;
-  double t;
-  e.w = solve(fac, q2x - q1x, t);
-  e.d2f = -2.0 * g - 2.0 * (lc - lam) * (b - a) + 2.0 * ll * t;
+  e.f = ll * e.g;
+  const double a1 = lc * lc * a, a2 = lam * lam * b;
+  e.df = a1 - a2;
+  e.w = solve(fac, q2x - q1x, e.t);
   const double iab = 1.0 / (a * b);
-  e.ell = (a > 0.0 && b > 0.0) ? std::log((lc * lc * a) * (a * iab) / (lam * lam)) : (e.df > 0.0 ? 1.0 : -1.0);
+  e.ell = (a > 0.0 && b > 0.0) ? log_ratio(a1, a2, e.df) : (e.df > 0.0 ? 1.0 : -1.0);
   e.dell = -2.0 + 2.0 * ll * (q2x.dot(e.w) * a - q1x.dot(e.w) * b) * iab;
   return true;
+}
+
+// f''(lambda) from the quantities of an evaluation.
+inline double second_derivative(double lam, double lc, const Eval& e) {
+  return -2.0 * e.g - 2.0 * (lc - lam) * (e.b - e.a) + 2.0 * lam * lc * e.t;
 }
 
 Pw85Result invalid(Pw85Status s) {
@@ -149,9 +176,9 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
     const double qs = std::max({std::abs(q1[0]), std::abs(q1[3]), std::abs(q1[5]), std::abs(q2[0]),
                                 std::abs(q2[3]), std::abs(q2[5])});
     if (!(qs > 0.0)) return invalid(Pw85Status::not_spd);
-    const int eq = std::ilogb(qs);
-    if (eq > 200 || eq < -200) {
-      const int k = -(eq / 2);
+    constexpr double big = 0x1p200, small = 0x1p-200;
+    if (qs > big || qs < small) {
+      const int k = -(std::ilogb(qs) / 2);
       for (int i = 0; i < 6; ++i) {
         q1[i] = std::ldexp(q1[i], 2 * k);
         q2[i] = std::ldexp(q2[i], 2 * k);
@@ -166,33 +193,39 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
       res.lambda = 0.5;
       return res;
     }
-    const int er = std::ilogb(r.cwiseAbs().maxCoeff());
-    if (er > 200 || er < -200) {
-      const int m = -er;
+    const double rs = r.cwiseAbs().maxCoeff();
+    if (rs > big || rs < small) {
+      const int m = -std::ilogb(rs);
       for (int i = 0; i < 3; ++i) r[i] = std::ldexp(r[i], m);
       shift_r += m;
       shift_m = m;
     }
   }
+  // f > 1 proves the bodies apart (in the units of the rescaled r).
+  const double separated_above = shift_m == 0 ? 1.0 : std::ldexp(1.0, 2 * shift_m);
 
   // Newton's method on ell(u) = log(A1/A2) = 0 in the logit variable
   // u = log(lambda/(1-lambda)): for two spheres ell is linear in u (one step),
   // and maximisers hugging lambda = 0 or 1 (elongated bodies) stay well scaled.
   // ell has the sign of f', so [u_lo, u_hi] always brackets the maximiser
   // (f concave, f'(0) > 0 > f'(1)); a step leaving it, or one that fails to
-  // halve the previous one, is replaced by bisection.
-  double u;
+  // halve the previous one, is replaced by bisection. The iterate is carried
+  // as t = e^u = lambda/(1-lambda) (lambda = t/(1+t), 1-lambda = 1/(1+t), both
+  // to full relative precision), so that a step multiplies t by e^du and
+  // bisection in u is a geometric mean in t: no log or exp near convergence.
+  double t;
   if (opt.lambda_guess > 0.0 && opt.lambda_guess < 1.0) {
-    u = std::log(opt.lambda_guess / (1.0 - opt.lambda_guess));
+    t = opt.lambda_guess / (1.0 - opt.lambda_guess);
   } else {
     // Cold start: the exact answer for two spheres of radii h1, h2 (the
-    // support radii of the bodies along r).
-    const Vector3d d = r / r.cwiseAbs().maxCoeff();
-    u = 0.5 * std::log(d.dot(mul(q1, d)) / d.dot(mul(q2, d)));
+    // support radii of the bodies along r), t = h1/h2.
+    // (After the rescaling above |r| and |Q| lie within 2^+-200: no overflow.)
+    t = std::sqrt(r.dot(mul(q1, r)) / r.dot(mul(q2, r)));
   }
   constexpr double inf = std::numeric_limits<double>::infinity();
   constexpr double tol_u = 1e-7;  // quadratic convergence: next error ~ 1e-14
-  double u_lo = -inf, u_hi = inf, last_step = inf;
+  constexpr double e4 = 54.598150033144236;  // e^4
+  double t_lo = 0.0, t_hi = inf, last_step = inf;
   double lam = 0.5, lc = 0.5;
 
   Eval e;
@@ -201,10 +234,8 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
   int it = 0;
   while (it < opt.max_iterations) {
     ++it;
-    const double eu = std::exp(-std::abs(u));  // in (0, 1]: no overflow
-    const double inv = 1.0 / (1.0 + eu);
-    lam = u >= 0.0 ? inv : eu * inv;
-    lc = u >= 0.0 ? eu * inv : inv;
+    lc = 1.0 / (1.0 + t);
+    lam = t * lc;
     if (!evaluate(lam, lc, r, q1, q2, e)) {
       // Q(lambda) is a convex combination of SPD matrices: this only happens
       // for pairs too ill-conditioned for double precision.
@@ -212,7 +243,7 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
       break;
     }
     best_f = std::max(best_f, e.f);
-    if (opt.stop_if_separated && e.f > std::ldexp(1.0, 2 * shift_m)) {
+    if (opt.stop_if_separated && e.f > separated_above) {
       status = Pw85Status::separated;
       break;
     }
@@ -221,37 +252,41 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
       break;
     }
     if (e.df > 0.0)
-      u_lo = u;
+      t_lo = t;
     else
-      u_hi = u;
+      t_hi = t;
     const double step = e.dell < 0.0 ? -e.ell / e.dell : inf;
-    const double next = u + step;
     if (std::abs(step) <= tol_u) {
       // Take this last step with the derivatives at hand instead of another
       // factorisation: the error left is of order step^2.
-      const double dlam = lam * lc * std::expm1(step) / (1.0 + lam * std::expm1(step));
+      const double em = step * (1.0 + 0.5 * step);  // expm1(step) to 1e-22
+      const double dlam = lam * lc * em / (1.0 + lam * em);
+      const double d2f = second_derivative(lam, lc, e);
       lam += dlam;
       lc -= dlam;
-      e.f += dlam * (e.df + 0.5 * dlam * e.d2f);
+      e.f += dlam * (e.df + 0.5 * dlam * d2f);
       e.x -= dlam * e.w;
       best_f = std::max(best_f, e.f);
       status = Pw85Status::ok;
       break;
     }
-    if (u_hi - u_lo <= tol_u) {
+    if (t_hi <= t_lo * (1.0 + tol_u)) {
       status = Pw85Status::ok;  // bracket at the resolution the data allow
       break;
     }
-    if (next > u_lo && next < u_hi && std::abs(step) <= 0.5 * last_step) {
-      u = next;
+    const double next = std::abs(step) <= 0.5 * last_step ? t * exp_step(step) : inf;
+    if (next > t_lo && next < t_hi) {
+      t = next;
       last_step = std::abs(step);
     } else {
-      if (u_lo == -inf)
-        u = u_hi - std::max(4.0, std::abs(u_hi));
-      else if (u_hi == inf)
-        u = u_lo + std::max(4.0, std::abs(u_lo));
+      // Bisection in u: u_hi - max(4, |u_hi|), u_lo + max(4, |u_lo|) while
+      // one side is open, the midpoint otherwise.
+      if (t_lo == 0.0)
+        t = t_hi > e4 ? 1.0 : (t_hi < 1.0 / e4 ? t_hi * t_hi : t_hi / e4);
+      else if (t_hi == inf)
+        t = t_lo < 1.0 / e4 ? 1.0 : (t_lo > e4 ? std::min(t_lo * t_lo, 1e300) : t_lo * e4);
       else
-        u = 0.5 * (u_lo + u_hi);
+        t = std::sqrt(t_lo) * std::sqrt(t_hi);
       last_step = inf;
     }
   }
@@ -259,7 +294,8 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
   res.status = status;
   res.iterations = it;
   res.lambda = lam;
-  res.mu2 = std::ldexp(status == Pw85Status::ok ? e.f : best_f, -2 * shift_m);
+  res.mu2 = status == Pw85Status::ok ? e.f : best_f;
+  if (shift_m != 0) res.mu2 = std::ldexp(res.mu2, -2 * shift_m);
   if (status == Pw85Status::not_converged && it == 1 && best_f == 0.0) return res;
   const double xn = e.x.norm();
   if (xn > 0.0 && std::isfinite(xn)) res.normal = e.x / xn;
