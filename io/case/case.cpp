@@ -1,4 +1,5 @@
 #include "io/case/case.hpp"
+#include "io/case/clump_shapes.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -27,7 +28,19 @@ void register_io_docs() {
           sim::key("every_steps", K::Integer, "steps between frames (instead of every)").in(1, 1e15),
           sim::key("vtk", K::Bool, "write VTK frames").def("true"),
           sim::key("progress", K::Bool, "print a progress line to stderr (also -q)").def("true"),
-          sim::key("progress_interval", K::Number, "wall-clock time between progress lines").def("2").si("s").in(0, inf)}});
+          sim::key("progress_interval", K::Number, "wall-clock time between progress lines").def("2").si("s").in(0, inf),
+          sim::key("solid_fraction", K::Map, "solid-fraction field as VTK image data (see output.solid_fraction)")}});
+    sim::register_effect_doc(
+        {"output.solid_fraction", "output: {solid_fraction: {...}}",
+         "The coarse-grained solid fraction on a regular grid over the domain (NUFFT of the particles, a Gaussian "
+         "of width `smoothing`), written as frames/solid_fraction_*.vti with a solid_fraction.pvd series. "
+         "Ellipsoids count as equal-volume spheres; overlapping clump balls count twice.",
+         {sim::key("spacing", K::Number, "grid spacing").req().si("m").in(0, inf, true),
+          sim::key("smoothing", K::Number, "Gaussian width; default the spacing").si("m").in(0, inf, true),
+          sim::key("tolerance", K::Number, "absolute accuracy of the field values").def("1e-4").in(1e-12, 1e-2),
+          sim::key("every", K::Number, "simulated time between fields; default the VTK frame cadence")
+              .si("s").in(0, inf, true),
+          sim::key("every_steps", K::Integer, "steps between fields (instead of every)").in(1, 1e15)}});
     register_checkpoint_docs();
     return true;
   }();
@@ -306,7 +319,15 @@ class CaseParser {
     const auto& d = doc("particles.shape");
     if (!v_.check_map(n, d, ctx)) return;
     auto& sh = p.shape;
-    if (v_.string(n, d, "type", ctx, "sphere") != "ellipsoid") return;
+    const std::string type = v_.string(n, d, "type", ctx, "sphere");
+    for (const char* k : {"file", "mesh", "grid", "mu"})
+      if (n[k] && type != "clump") v_.error(n[k], ctx, std::string("'") + k + "' applies to type: clump only");
+    if (type == "clump") {
+      parse_clump(n, d, sh, ctx);
+      parse_orientation(n, sh, ctx);
+      return;
+    }
+    if (type != "ellipsoid") return;
     sh.kind = sim::ShapeConfig::Kind::Ellipsoid;
     if (n["aspect_ratio"] && n["semi_axes"]) {
       v_.error(n["semi_axes"], ctx, "give either aspect_ratio or semi_axes, not both");
@@ -327,6 +348,40 @@ class CaseParser {
     } else {
       v_.error(n, ctx, "an ellipsoid needs aspect_ratio or semi_axes");
     }
+    parse_orientation(n, sh, ctx);
+  }
+
+  // A clump from a clump file or a mesh decomposed now (io/case/clump_shapes.hpp).
+  void parse_clump(const YAML::Node& n, const EffectDoc& d, sim::ShapeConfig& sh, const std::string& ctx) {
+    namespace fs = std::filesystem;
+    sh.kind = sim::ShapeConfig::Kind::Clump;
+    for (const char* k : {"aspect_ratio", "semi_axes"})
+      if (n[k]) v_.error(n[k], ctx, std::string("'") + k + "' applies to type: ellipsoid only");
+    if (n["file"] && n["mesh"]) {
+      v_.error(n["mesh"], ctx, "give either file (a clump file) or mesh (decomposed at load time), not both");
+      return;
+    }
+    if (!n["file"] && !n["mesh"]) {
+      v_.error(n, ctx, "a clump needs file (a clump file from `grains clump`) or mesh (an .stl/.obj/.off file)");
+      return;
+    }
+    if (n["file"] && (n["grid"] || n["mu"]))
+      v_.error(n["grid"] ? n["grid"] : n["mu"], ctx, "grid and mu apply to mesh only (a clump file is decomposed already)");
+    const char* key = n["file"] ? "file" : "mesh";
+    const std::string rel = v_.string(n, d, key, ctx);
+    if (rel.empty()) return;
+    const fs::path path = fs::path(rel).is_absolute() ? fs::path(rel) : fs::path(c_.base_dir) / rel;
+    const int grid = static_cast<int>(v_.integer(n, d, "grid", ctx, 32));
+    const double mu = v_.number(n, d, "mu", ctx, 0.25);
+    if (!v_.ok()) return;
+    try {
+      sh.clump = n["file"] ? clump_shape_from_file(path.string()) : clump_shape_from_mesh(path.string(), grid, mu);
+    } catch (const std::exception& e) {
+      v_.error(n[key], ctx, std::string("cannot make the clump shape: ") + e.what());
+    }
+  }
+
+  void parse_orientation(const YAML::Node& n, sim::ShapeConfig& sh, const std::string& ctx) {
     const YAML::Node o = n["orientation"];
     if (!o) return;
     if (o.IsScalar() && o.Scalar() == "random") return;
@@ -483,6 +538,20 @@ class CaseParser {
     o.vtk = v_.boolean(n, d, "vtk", "output", true);
     o.progress = v_.boolean(n, d, "progress", "output", true);
     o.progress_interval = v_.number(n, d, "progress_interval", "output", 2.0);
+    if (const YAML::Node sf = n["solid_fraction"]) {
+      const auto& sd = doc("output.solid_fraction");
+      const std::string ctx = "output.solid_fraction";
+      if (v_.check_map(sf, sd, ctx)) {
+        auto& c = o.solid_fraction;
+        c.enabled = true;
+        c.spacing = v_.number(sf, sd, "spacing", ctx, 1);
+        c.smoothing = v_.number(sf, sd, "smoothing", ctx, -1);
+        c.tolerance = v_.number(sf, sd, "tolerance", ctx, 1e-4);
+        if (sf["every"] && sf["every_steps"]) v_.error(sf["every_steps"], ctx, "give either every or every_steps, not both");
+        c.every = v_.number(sf, sd, "every", ctx, 0);
+        c.every_steps = v_.integer(sf, sd, "every_steps", ctx, 0);
+      }
+    }
   }
 
   void parse_checkpoint(const YAML::Node& n) {

@@ -12,6 +12,7 @@
 #include <signal.h>
 
 #include "io/output/progress.hpp"
+#include "io/output/solid_fraction_output.hpp"
 #include "io/output/vtk_output.hpp"
 #include "io/run/checkpoint_stage.hpp"
 #include "grains/version.hpp"
@@ -143,6 +144,13 @@ void add_output_stages(Simulation& s, const RunOptions& opt) {
     vtk = v.get();
     s.pipeline.add(std::move(v));
   }
+  if (o.solid_fraction.enabled) {
+    const auto& sf = o.solid_fraction;
+    const std::int64_t every = sf.every_steps > 0 ? sf.every_steps
+                               : sf.every > 0     ? std::max<std::int64_t>(1, std::llround(sf.every / s.scene.clock.dt))
+                                                  : frame_steps(o, s.scene.clock.dt);
+    s.pipeline.add(std::make_unique<SolidFractionOutput>(opt.out_dir, sf, every));
+  }
   if (o.progress && !opt.quiet) s.pipeline.add(std::make_unique<Progress>(*opt.log, o.progress_interval));
   // Last of the output phase: a checkpoint holds the frames of its own step.
   CheckpointExtras info{s.c.path, s.c.text, effective_case(s.c), {}, {}};
@@ -178,6 +186,7 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
   } else {
     s.pipeline.initialize(s.scene);
     if (vtk) vtk->write_frame(s.scene);
+    if (auto* sf = find_stage<SolidFractionOutput>(s)) sf->write_frame(s.scene);
   }
   r.particles_start = s.scene.particles.n_owned();
   double particle_steps = 0;
