@@ -41,6 +41,18 @@ void write_particles(const h5::File& f, sim::ParticleStore& p) {
   });
 }
 
+// Rigid clumps (scenes with clumps only): every per-body array of BodyStore.
+void write_bodies(const h5::File& f, sim::BodyStore& b) {
+  f.group("/bodies");
+  f.attribute("/bodies", "count", std::to_string(b.size()));
+  b.visit_fields([&](const char* name, const char* unit, auto& vec) {
+    using T = typename std::decay_t<decltype(vec)>::value_type;
+    const std::string ds = std::string("/bodies/") + name;
+    f.write_vector(ds, vec, 1, unit);
+    if constexpr (std::is_same_v<T, sim::Quat>) f.attribute(ds, "components", "x y z w");
+  });
+}
+
 void write_neighbors(const h5::File& f, const sim::NeighborList& nl) {
   f.group("/neighbor");
   const auto b = nl.build_state();
@@ -104,6 +116,7 @@ void write_checkpoint(const fs::path& file, sim::Scene& s, const CheckpointExtra
     f.write_string("/case/text", x.case_text);
     f.write_string("/case/effective", x.case_effective);
     write_particles(f, s.particles);
+    if (s.particles.fields().has(sim::Field::Body)) write_bodies(f, s.bodies);
     write_neighbors(f, s.neighbors);
     write_walls(f, s.walls);
     f.group("/scene");
@@ -160,6 +173,26 @@ void read_particles(const h5::File& f, sim::ParticleStore& p) {
     if (std::find(seen.begin(), seen.end(), c) == seen.end())
       throw CheckpointError(f.path() + ": has particle field '" + c +
                             "', which this case does not use: the checkpoint was written for a different case");
+}
+
+void read_bodies(const h5::File& f, sim::Scene& s) {
+  auto& b = s.bodies;
+  if (!f.exists("/bodies"))
+    throw CheckpointError(f.path() + ": has no clump bodies, which this case needs: the checkpoint was written for a "
+                          "different case");
+  const std::size_t n = std::stoull(f.read_attribute("/bodies", "count"));
+  b.visit_fields([&](const char* name, const char*, auto& vec) {
+    const std::string ds = std::string("/bodies/") + name;
+    if (!f.exists(ds)) throw CheckpointError(f.path() + ": clump body field '" + name + "' is missing (corrupt checkpoint)");
+    f.read_vector(ds, vec, n, 1);
+  });
+  b.rebuild_index();
+  // Every ball must find its body.
+  const auto& p = s.particles;
+  for (std::size_t i = 0; i < p.n_owned(); ++i)
+    if (p.body[i] >= 0 && b.index_of(p.body[i]) < 0)
+      throw CheckpointError(f.path() + ": particle id " + std::to_string(p.id[i]) + " belongs to clump " +
+                            std::to_string(p.body[i]) + ", which the checkpoint does not hold (corrupt checkpoint)");
 }
 
 void read_neighbors(const h5::File& f, sim::Scene& s) {
@@ -254,6 +287,7 @@ CheckpointExtras read_checkpoint(const fs::path& file, sim::Scene& s) {
     const auto step = f.read_scalar<std::int64_t>("/clock/step");
     read_walls(f, s.walls);
     read_particles(f, s.particles);
+    if (s.particles.fields().has(sim::Field::Body)) read_bodies(f, s);
     read_neighbors(f, s);
     s.clock.step = step;
     s.clock.time = f.read_scalar<double>("/clock/time");

@@ -74,11 +74,14 @@ void VtkOutput::write_frame(const sim::Scene& s) {
   std::snprintf(buf, sizeof buf, "%06zu", times_.size());
   write_particles(s, dir_ / "frames" / (std::string("particles_") + buf + ".vtu"));
   if (s.walls.count() > 0) write_walls(s, dir_ / "frames" / (std::string("walls_") + buf + ".vtp"));
+  const bool clumps = s.particles.fields().has(sim::Field::Body);
+  if (clumps) write_bodies(s, dir_ / "frames" / (std::string("bodies_") + buf + ".vtu"));
   times_.push_back(s.clock.time);
   steps_.push_back(s.clock.step);
   last_step_ = s.clock.step;
   write_pvd("particles.pvd", "particles_", ".vtu");
   if (s.walls.count() > 0) write_pvd("walls.pvd", "walls_", ".vtp");
+  if (clumps) write_pvd("bodies.pvd", "bodies_", ".vtu");
 }
 
 void VtkOutput::resume(const sim::Scene& s, std::vector<double> times, std::vector<std::int64_t> steps) {
@@ -93,6 +96,7 @@ void VtkOutput::resume(const sim::Scene& s, std::vector<double> times, std::vect
   } else if (!times_.empty()) {
     write_pvd("particles.pvd", "particles_", ".vtu");
     if (s.walls.count() > 0) write_pvd("walls.pvd", "walls_", ".vtp");
+    if (s.particles.fields().has(sim::Field::Body)) write_pvd("bodies.pvd", "bodies_", ".vtu");
   }
 }
 
@@ -174,7 +178,56 @@ void VtkOutput::write_particles(const sim::Scene& s, const fs::path& file) const
     pd->AddArray(vec_array("semi_axes", p.semi_axes, n));
     pd->AddArray(t);
   }
+  if (p.fields().has(sim::Field::Body)) {  // clump balls: the body they belong to (-1: free particle)
+    vtkNew<vtkLongLongArray> body;
+    body->SetName("body");
+    for (std::size_t i = 0; i < n; ++i) body->InsertNextValue(p.body[i]);
+    pd->AddArray(body);
+  }
   pd->SetActiveScalars("radius");
+  vtkNew<vtkXMLUnstructuredGridWriter> w;
+  w->SetInputData(grid);
+  write_or_throw(w.Get(), file);
+}
+
+void VtkOutput::write_bodies(const sim::Scene& s, const fs::path& file) const {
+  const auto& b = s.bodies;
+  const std::size_t n = b.size();
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(static_cast<vtkIdType>(n));
+  for (std::size_t k = 0; k < n; ++k) pts->SetPoint(static_cast<vtkIdType>(k), b.x[k].data());
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(pts);
+  grid->Allocate(static_cast<vtkIdType>(n));
+  for (vtkIdType k = 0; k < static_cast<vtkIdType>(n); ++k) grid->InsertNextCell(VTK_VERTEX, 1, &k);
+  auto* pd = grid->GetPointData();
+  vtkNew<vtkLongLongArray> id;
+  id->SetName("body");
+  vtkNew<vtkDoubleArray> mass, q;
+  mass->SetName("mass");
+  q->SetName("orientation");  // w, x, y, z
+  q->SetNumberOfComponents(4);
+  std::vector<Vec3> axes[3];
+  for (std::size_t k = 0; k < n; ++k) {
+    id->InsertNextValue(b.id[k]);
+    mass->InsertNextValue(b.mass[k]);
+    const auto& o = b.orientation[k];
+    const double qv[4] = {o.w(), o.x(), o.y(), o.z()};
+    q->InsertNextTuple(qv);
+    const Eigen::Matrix3d R = o.toRotationMatrix();
+    for (int a = 0; a < 3; ++a) axes[a].push_back(R.col(a));
+  }
+  pd->AddArray(id);
+  pd->AddArray(mass);
+  pd->AddArray(q);
+  pd->AddArray(vec_array("velocity", b.v, n));
+  pd->AddArray(vec_array("angular_velocity", b.omega, n));
+  pd->AddArray(vec_array("inertia", b.inertia, n));
+  // Principal axes in the world frame (unit vectors; axis_1 has the smallest moment).
+  pd->AddArray(vec_array("axis_1", axes[0], n));
+  pd->AddArray(vec_array("axis_2", axes[1], n));
+  pd->AddArray(vec_array("axis_3", axes[2], n));
   vtkNew<vtkXMLUnstructuredGridWriter> w;
   w->SetInputData(grid);
   write_or_throw(w.Get(), file);

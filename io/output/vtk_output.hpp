@@ -1,8 +1,10 @@
 #pragma once
 // VTK XML output written through the VTK library: particles as one .vtu per
 // frame (point data: id, radius, velocity, angular velocity when the scene
-// rotates, force, coordination number, material), walls as .vtp, and a .pvd
-// time series for each that ParaView opens directly. The .pvd files are
+// rotates, force, coordination number, material; `body` in scenes with
+// clumps), walls as .vtp, clump bodies as bodies_*.vtu (centre, orientation
+// quaternion, principal axes axis_1..3 as vectors), and a .pvd time series
+// for each that ParaView opens directly. The .pvd files are
 // rewritten atomically after every frame, so an interrupted run leaves a
 // valid series of the frames it wrote.
 #include <filesystem>
@@ -38,6 +40,7 @@ class VtkOutput final : public sim::Stage {
  private:
   void write_particles(const sim::Scene& s, const std::filesystem::path& file) const;
   void write_walls(const sim::Scene& s, const std::filesystem::path& file) const;
+  void write_bodies(const sim::Scene& s, const std::filesystem::path& file) const;
   void write_pvd(const std::string& name, const std::string& prefix, const std::string& ext) const;
   std::filesystem::path dir_;
   std::int64_t every_;

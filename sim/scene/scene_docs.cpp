@@ -42,10 +42,20 @@ std::vector<EffectDoc> scene_docs() {
                 key("placement", K::Map, "where the particles start (see placement.*)").req(),
                 key("shape", K::Map, "particle shape (see particles.shape); default a sphere"),
                 key("velocity", K::Vec3, "initial velocity").def("[0, 0, 0]").si("m/s")}});
-  d.push_back({"particles.shape", "shape: {type: ellipsoid, ...}",
+  d.push_back({"particles.shape", "shape: {type: ellipsoid | clump, ...}",
                "The shape of a particle set. Ellipsoids use the Perram-Wertheim contact function and a "
-               "quaternion rigid-body integrator; their axes scale with each particle's radius.",
-               {key("type", K::String, "shape kind").req().one_of({"sphere", "ellipsoid"}),
+               "quaternion rigid-body integrator; their axes scale with each particle's radius. Clumps are "
+               "rigid unions of balls (sphere decompositions of a mesh); each ball is a sphere particle, the "
+               "body integrates with the quaternion scheme; the set's radius is the clump's bounding radius "
+               "about its centre of mass (mass ~ radius^3, inertia ~ radius^5, of the union of the balls).",
+               {key("type", K::String, "shape kind").req().one_of({"sphere", "ellipsoid", "clump"}),
+                key("file", K::String, "clump: a clump file written by `grains clump` (relative to the case file)"),
+                key("mesh", K::String,
+                    "clump: a closed mesh (.stl, .obj, .off; relative to the case file), decomposed at load time "
+                    "and cached by content hash and parameters in $GRAINS_CACHE_DIR (default ~/.cache/grains/clumps)"),
+                key("grid", K::Integer, "clump from mesh: grid nodes per axis of the decomposition (m = grid^3)")
+                    .def("32").in(4, 1024),
+                key("mu", K::Number, "clump from mesh: protrusion factor of the decomposition").def("0.25").in(0, 1),
                 key("aspect_ratio", K::Number,
                     "ellipsoid of revolution a : b : b with a/b = aspect_ratio (prolate > 1, oblate < 1); the set's "
                     "radius is then the volume-equivalent radius")
