@@ -8,7 +8,13 @@ reference
 OUT=$WORK/signalled
 "$GRAINS" run "$CASE" -o "$OUT" -q 2>"$WORK/err1" &
 pid=$!
-sleep 0.8
+# Signal once the run is under way (its second frame, step 500 of 6,000,
+# exists), not after a fixed sleep: a fast machine could finish first.
+for _ in $(seq 600); do
+  [ -e "$OUT/frames/particles_000001.vtu" ] && break
+  kill -0 "$pid" 2>/dev/null || break
+  sleep 0.02
+done
 kill -INT "$pid"
 wait "$pid"
 rc=$?
