@@ -26,7 +26,14 @@ step1=$(sed -n 's/.*at step \([0-9]*\).*/\1/p' "$WORK/err1")
 
 "$GRAINS" run "$CASE" --resume "$OUT" -q 2>"$WORK/err2" &
 pid=$!
-sleep 0.6
+# Again only once the resumed run is stepping (a newer checkpoint exists):
+# before its handlers are installed a signal simply ends the process.
+first=$(newest "$OUT")
+for _ in $(seq 600); do
+  [ "$(newest "$OUT")" != "$first" ] && break
+  kill -0 "$pid" 2>/dev/null || break
+  sleep 0.02
+done
 kill -TERM "$pid"
 wait "$pid"
 rc=$?
