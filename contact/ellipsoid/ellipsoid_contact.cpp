@@ -13,7 +13,8 @@ ContactGeometry contact_geometry_from_pw85(const Vector3d& ci, const SymMat3& qi
                                            const SymMat3& qj, const Pw85Result& pw85) {
   const Vector3d& n = pw85.normal;  // from i towards j
   const Vector3d qin = form_times(qi, n), qjn = form_times(qj, n);
-  const double hi = std::sqrt(n.dot(qin)), hj = std::sqrt(n.dot(qjn));
+  const double hi2 = n.dot(qin), hj2 = n.dot(qjn);
+  const double hi = std::sqrt(hi2), hj = std::sqrt(hj2);
   const Vector3d pi = ci + qin / hi, pj = cj - qjn / hj;
   ContactGeometry g;
   g.normal = -n;
@@ -21,7 +22,7 @@ ContactGeometry contact_geometry_from_pw85(const Vector3d& ci, const SymMat3& qi
   g.point = 0.5 * (pi + pj);
   Vector3d t1, t2;
   tangent_basis(n, t1, t2);
-  g.radius = hertz_radius(curvature_tensor(qi, n, t1, t2) + curvature_tensor(qj, n, t1, t2));
+  g.radius = hertz_radius(curvature_tensor(qi, qin, hi2, hi, t1, t2) + curvature_tensor(qj, qjn, hj2, hj, t1, t2));
   return g;
 }
 

@@ -157,9 +157,21 @@ double pw85_f(double lambda, const Vector3d& r, const SymMat3& q1, const SymMat3
   return e.f;
 }
 
+bool pw85_separated_at(double lambda, const Vector3d& r, const SymMat3& q1, const SymMat3& q2) {
+  const double lc = 1.0 - lambda;
+  double q[6];
+  for (int i = 0; i < 6; ++i) q[i] = lc * q1[i] + lambda * q2[i];
+  Ldl fac;
+  if (!factor(q, fac)) return false;
+  double g;
+  solve(fac, r, g);
+  return lambda * lc * g > 1.0;
+}
+
 Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat3& q2_in,
                         const Pw85Options& opt) {
-  if (!all_finite(q1_in.data(), 6) || !all_finite(q2_in.data(), 6) || !all_finite(r_in.data(), 3))
+  if (!opt.trusted_input &&
+      (!all_finite(q1_in.data(), 6) || !all_finite(q2_in.data(), 6) || !all_finite(r_in.data(), 3)))
     return invalid(Pw85Status::non_finite_input);
   Pw85Result res;
 
@@ -172,7 +184,13 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
   Vector3d r = r_in;
   int shift_r = 0;  // total exponent applied to r (undo on mu2 and x0)
   int shift_m = 0;  // the part of it that changes mu2 (m above)
-  {
+  if (opt.trusted_input) {
+    if (r[0] == 0.0 && r[1] == 0.0 && r[2] == 0.0) {
+      res.mu2 = 0.0;
+      res.lambda = 0.5;
+      return res;
+    }
+  } else {
     const double qs = std::max({std::abs(q1[0]), std::abs(q1[3]), std::abs(q1[5]), std::abs(q2[0]),
                                 std::abs(q2[3]), std::abs(q2[5])});
     if (!(qs > 0.0)) return invalid(Pw85Status::not_spd);
@@ -223,7 +241,7 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
     t = std::sqrt(r.dot(mul(q1, r)) / r.dot(mul(q2, r)));
   }
   constexpr double inf = std::numeric_limits<double>::infinity();
-  constexpr double tol_u = 1e-7;  // quadratic convergence: next error ~ 1e-14
+  const double tol_u = opt.tolerance;  // default 1e-7: quadratic convergence, next error ~ 1e-14
   constexpr double e4 = 54.598150033144236;  // e^4
   double t_lo = 0.0, t_hi = inf, last_step = inf;
   double lam = 0.5, lc = 0.5;
@@ -259,7 +277,7 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
     if (std::abs(step) <= tol_u) {
       // Take this last step with the derivatives at hand instead of another
       // factorisation: the error left is of order step^2.
-      const double em = step * (1.0 + 0.5 * step);  // expm1(step) to 1e-22
+      const double em = step * (1.0 + step * (0.5 + step * (1.0 / 6.0)));  // expm1(step)
       const double dlam = lam * lc * em / (1.0 + lam * em);
       const double d2f = second_derivative(lam, lc, e);
       lam += dlam;

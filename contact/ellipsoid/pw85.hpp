@@ -41,6 +41,17 @@ struct Pw85Options {
   // Return with status `separated` as soon as some f(lambda) > 1 is found.
   bool stop_if_separated = false;
   int max_iterations = 100;
+  // Newton stops when the step in u = log(lambda/(1-lambda)) is below this and
+  // takes that last step from the derivatives at hand: lambda and the normal
+  // are then accurate to ~tolerance^2, mu2 to ~tolerance^3 (relative). The
+  // default gives full double precision; the DEM uses a looser value
+  // (docs/pw85.md).
+  double tolerance = 1e-7;
+  // The caller guarantees finite, symmetric positive-definite Q1, Q2 and
+  // magnitudes (Q, r, r^T Q r) far from overflow and underflow (e.g. the forms
+  // of a DEM scene): skips the input checks and the power-of-two rescaling.
+  // A failure to factor Q(lambda) is still reported (not_converged).
+  bool trusted_input = false;
 };
 
 struct Pw85Result {
@@ -62,6 +73,12 @@ struct Pw85Result {
 // r = 0 gives mu2 = 0, lambda = 0.5 and status ok.
 Pw85Result pw85_contact(const Eigen::Vector3d& r, const SymMat3& q1, const SymMat3& q2,
                         const Pw85Options& options = {});
+
+// True when f(lambda) > 1, i.e. the bodies are proven apart by this one
+// lambda: one LDL^T of Q(lambda) and one solve, about half a Newton iteration.
+// For trusted input only (see Pw85Options::trusted_input); false when
+// Q(lambda) does not factor.
+bool pw85_separated_at(double lambda, const Eigen::Vector3d& r, const SymMat3& q1, const SymMat3& q2);
 
 // f(lambda) alone, for tests and diagnostics (no input checks; NaN if
 // Q(lambda) is not positive-definite).

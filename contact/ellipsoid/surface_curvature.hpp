@@ -35,26 +35,39 @@ inline void tangent_basis(const Eigen::Vector3d& n, Eigen::Vector3d& t1, Eigen::
 }
 
 // Curvature tensor of ellipsoid form q at its support point in direction n,
-// expressed in the tangent basis (t1, t2) (both orthogonal to n).
-inline Eigen::Matrix2d curvature_tensor(const SymMat3& q, const Eigen::Vector3d& n,
+// expressed in the tangent basis (t1, t2) (both orthogonal to n), given
+// qn = Q n, h2 = n^T Q n and h = sqrt(h2) (the support point needs them too).
+inline Eigen::Matrix2d curvature_tensor(const SymMat3& q, const Eigen::Vector3d& qn, double h2, double h,
                                         const Eigen::Vector3d& t1, const Eigen::Vector3d& t2) {
-  const Eigen::Vector3d qn = form_times(q, n), qt1 = form_times(q, t1), qt2 = form_times(q, t2);
-  const double h2 = n.dot(qn);
+  const Eigen::Vector3d qt1 = form_times(q, t1), qt2 = form_times(q, t2);
   const double v1 = t1.dot(qn), v2 = t2.dot(qn);
-  const double m11 = t1.dot(qt1) - v1 * v1 / h2;
-  const double m12 = t1.dot(qt2) - v1 * v2 / h2;
-  const double m22 = t2.dot(qt2) - v2 * v2 / h2;
+  const double ih2 = 1.0 / h2;
+  const double m11 = t1.dot(qt1) - v1 * v1 * ih2;
+  const double m12 = t1.dot(qt2) - v1 * v2 * ih2;
+  const double m22 = t2.dot(qt2) - v2 * v2 * ih2;
   const double det = m11 * m22 - m12 * m12;
-  const double scale = std::sqrt(h2) / det;
+  const double scale = h / det;
   Eigen::Matrix2d k;
   k << m22 * scale, -m12 * scale, -m12 * scale, m11 * scale;
   return k;
+}
+
+// The same from the normal alone.
+inline Eigen::Matrix2d curvature_tensor(const SymMat3& q, const Eigen::Vector3d& n,
+                                        const Eigen::Vector3d& t1, const Eigen::Vector3d& t2) {
+  const Eigen::Vector3d qn = form_times(q, n);
+  const double h2 = n.dot(qn);
+  return curvature_tensor(q, qn, h2, std::sqrt(h2), t1, t2);
 }
 
 // R* = 1/sqrt(det K) for the summed curvature tensor K. Principal curvatures
 // below `floor` (a conforming or concave pairing, e.g. an ellipsoid flank in a
 // cylinder of nearly the same curvature) are raised to it so R* stays finite.
 inline double hertz_radius(const Eigen::Matrix2d& k, double floor = 0.0) {
+  const double det = k(0, 0) * k(1, 1) - k(0, 1) * k(0, 1);
+  // Both principal curvatures positive (trace and determinant > 0) and no
+  // floor to apply: R* = 1/sqrt(det K) without the eigenvalues.
+  if (floor <= 0.0 && det > 0.0 && k(0, 0) + k(1, 1) > 0.0) return 1.0 / std::sqrt(det);
   const double m = 0.5 * (k(0, 0) + k(1, 1));
   const double r = std::hypot(0.5 * (k(0, 0) - k(1, 1)), k(0, 1));
   double k1 = m + r;

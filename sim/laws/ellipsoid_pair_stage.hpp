@@ -16,30 +16,54 @@
 
 namespace grains::sim {
 
+/// PW85 tolerance in the DEM (Pw85Options::tolerance): the step in
+/// u = log(lambda/(1-lambda)) below which Newton stops. It leaves relative
+/// errors ~1e-8 in lambda and the normal and ~1e-12 in mu^2, i.e. ~1e-9 of a
+/// typical overlap (delta/|r| ~ 1e-3), and lets a warm-started persistent
+/// contact finish in one or two factorisations (docs/pw85.md).
+inline constexpr double kPw85DemTolerance = 1e-4;
+
 /// Geometry of the pair (i, j) for any shapes; `lambda` is the PW85 warm start
 /// (in/out; < 0: cold). Returns false when the bodies do not touch.
+/// `maybe_apart`: the pair probably did not touch at the previous step (first
+/// try to prove it apart at the warm-start lambda); a hint, the result does
+/// not depend on it.
 inline bool shape_pair_geometry(const ParticleStore& p, std::size_t i, std::size_t j, double& lambda,
-                                contact::ContactGeometry& g) {
+                                contact::ContactGeometry& g, bool maybe_apart = true) {
   const bool ei = p.shape[i] == kEllipsoid, ej = p.shape[j] == kEllipsoid;
   if (!ei && !ej) return contact::sphere_sphere(p.x[i], p.radius[i], p.x[j], p.radius[j], g);
   // Separating axis along the line of centres: if the two shadows on that
-  // line do not overlap (support radii h = sqrt(u^T Q u)), the bodies are
-  // apart. Two matrix-vector products, far cheaper than a PW85 solve, and it
-  // rejects most pairs whose bounding spheres overlap.
+  // line do not overlap (support radii h = sqrt(u^T Q u), u = r/|r|), the
+  // bodies are apart. Two matrix-vector products, far cheaper than a PW85
+  // solve, and it rejects most pairs whose bounding spheres overlap.
+  // With a = r^T Q_i r = (h_i |r|)^2 (a_i^2 |r|^2 for a sphere), likewise b, and
+  // c = |r|^2 the test h_i + h_j <= |r| reads sqrt(a) + sqrt(b) <= c, i.e.
+  // d = c^2 - a - b >= 0 and 4 a b <= d^2: no square root.
   const Vec3 r = p.x[j] - p.x[i];
   const double r2 = r.squaredNorm();
   if (r2 > 0) {
-    const Vec3 u = r / std::sqrt(r2);
-    const double hi = ei ? std::sqrt(u.dot(contact::form_times(p.form[i], u))) : p.radius[i];
-    const double hj = ej ? std::sqrt(u.dot(contact::form_times(p.form[j], u))) : p.radius[j];
-    if ((hi + hj) * (hi + hj) <= r2) return false;
+    const double a = ei ? r.dot(contact::form_times(p.form[i], r)) : p.radius[i] * p.radius[i] * r2;
+    const double b = ej ? r.dot(contact::form_times(p.form[j], r)) : p.radius[j] * p.radius[j] * r2;
+    const double d = r2 * r2 - a - b;
+    if (d >= 0 && 4 * a * b <= d * d) return false;
   }
   if (ei && ej) {
-    const auto c = contact::ellipsoid_contact(p.x[i], p.form[i], p.x[j], p.form[j], lambda);
-    if (c.pw85.status == contact::Pw85Status::ok || c.pw85.status == contact::Pw85Status::separated)
-      lambda = c.pw85.lambda;
-    if (!c.touching) return false;
-    g = c.geometry;
+    // A pair that was apart at the previous step usually still is at the same
+    // lambda: f(lambda) > 1 proves it with half a PW85 iteration.
+    if (maybe_apart && lambda > 0.0 && lambda < 1.0 && contact::pw85_separated_at(lambda, r, p.form[i], p.form[j]))
+      return false;
+    // PW85 with early exit and warm start at the DEM tolerance (kPw85DemTolerance);
+    // the contact geometry (support points, curvatures, R*) only for pairs that touch.
+    contact::Pw85Options opt;
+    opt.lambda_guess = lambda;
+    opt.stop_if_separated = true;
+    opt.trusted_input = true;  // forms of positive semi-axes, built every step
+    opt.tolerance = kPw85DemTolerance;
+    const auto pw = contact::pw85_contact(r, p.form[i], p.form[j], opt);
+    if (pw.status == contact::Pw85Status::ok || pw.status == contact::Pw85Status::separated)
+      lambda = pw.lambda;
+    if (pw.status != contact::Pw85Status::ok || !(pw.mu2 < 1.0)) return false;
+    g = contact::contact_geometry_from_pw85(p.x[i], p.form[i], p.x[j], p.form[j], pw);
     return g.overlap > 0;
   }
   // One sphere, one ellipsoid: geometry with the ellipsoid as body j, then
@@ -78,7 +102,10 @@ class ShapePairContactStage final : public Stage {
         }
         double lambda = hist[H] > 0 ? hist[H] : -1.0;
         contact::ContactGeometry g;
-        const bool touching = shape_pair_geometry(p, i, j, lambda, g);
+        // A pair with tangential history touched at the previous step.
+        bool maybe_apart = true;
+        for (int h = 0; h < H; ++h) maybe_apart = maybe_apart && hist[h] == 0.0;
+        const bool touching = shape_pair_geometry(p, i, j, lambda, g, maybe_apart);
         hist[H] = lambda;
         if (!touching) {
           if constexpr (H > 0) std::fill_n(hist, H, 0.0);
