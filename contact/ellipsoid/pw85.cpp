@@ -79,7 +79,8 @@ bool all_finite(const double* p, int n) {
 // and f' = A1 - A2.
 struct Eval {
   double f, df;       // f, f' with respect to lambda
-  double ell, dell;   // ell = log(A1/A2) and d ell / du, u = log(l/(1-l))
+  double step;        // Newton step -ell/ell' in u = log(l/(1-l)), ell = log(A1/A2)
+                      // (+inf when ell' >= 0 or not finite: bisect instead)
   double g, t, a, b;  // r^T x, v^T Q^{-1} v with v = (Q2-Q1) x, a, b: for f''
   Vector3d x;         // Q(lambda)^{-1} r
   Vector3d w;         // Q(lambda)^{-1} (Q2 - Q1) x  (so dx/dlambda = -w)
@@ -124,9 +125,32 @@ inline bool evaluate(double lam, double lc, const Vector3d& r, const double* q1,
   const double a1 = lc * lc * a, a2 = lam * lam * b;
   e.df = a1 - a2;
   e.w = solve(fac, q2x - q1x, e.t);
-  const double iab = 1.0 / (a * b);
-  e.ell = (a > 0.0 && b > 0.0) ? log_ratio(a1, a2, e.df) : (e.df > 0.0 ? 1.0 : -1.0);
-  e.dell = -2.0 + 2.0 * ll * (q2x.dot(e.w) * a - q1x.dot(e.w) * b) * iab;
+  // ell' = D / (a b) with D = 2 l (1-l) (a (Q2 x).w - b (Q1 x).w) - 2 a b, and
+  // near the root ell = 2 atanh(z), z = f'/(A1 + A2): one division gives both
+  // z and the step -ell/ell' = -ell a b (A1 + A2) / ((A1 + A2) D).
+  const double sum = a1 + a2;
+  const double d = 2.0 * ll * (q2x.dot(e.w) * a - q1x.dot(e.w) * b) - 2.0 * a * b;
+  const double inv = 1.0 / (sum * d);
+  const double abs_inv = a * b * sum * inv;  // = 1 / ell'
+  if (a > 0.0 && b > 0.0 && d < 0.0 && std::isfinite(abs_inv) && abs_inv != 0.0) {
+    const double z = e.df * d * inv;
+    const double z2 = z * z;
+    double ell;
+    if (z2 < 1e-4)
+      ell = 2.0 * z * (1.0 + z2 * (1.0 / 3.0 + z2 * 0.2));
+    else if (z2 < 1e-2)
+      ell = 2.0 * z * (1.0 + z2 * (1.0 / 3.0 + z2 * (0.2 + z2 * (1.0 / 7.0 + z2 * (1.0 / 9.0)))));
+    else
+      ell = std::log(a1 / a2);
+    e.step = -ell * abs_inv;
+  } else {
+    // Degenerate magnitudes (a or b zero, or products out of range): the
+    // straightforward formulas.
+    const double iab = 1.0 / (a * b);
+    const double ell = (a > 0.0 && b > 0.0) ? log_ratio(a1, a2, e.df) : (e.df > 0.0 ? 1.0 : -1.0);
+    const double dell = -2.0 + 2.0 * ll * (q2x.dot(e.w) * a - q1x.dot(e.w) * b) * iab;
+    e.step = dell < 0.0 ? -ell / dell : std::numeric_limits<double>::infinity();
+  }
   return true;
 }
 
@@ -273,7 +297,7 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
       t_lo = t;
     else
       t_hi = t;
-    const double step = e.dell < 0.0 ? -e.ell / e.dell : inf;
+    const double step = e.step;
     if (std::abs(step) <= tol_u) {
       // Take this last step with the derivatives at hand instead of another
       // factorisation: the error left is of order step^2.
