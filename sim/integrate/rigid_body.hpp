@@ -77,17 +77,26 @@ class RigidBodyDrift final : public Stage {
   void run(Scene& s) override {
     ParticleStore& p = s.particles;
     const double dt = s.clock.dt;
-    rigid_half_kick(p, 0.5 * dt);
+    const double half_dt = 0.5 * dt;
     const std::size_t n = p.n_owned();
     for (std::size_t i = 0; i < n; ++i) {
-      p.x[i] += dt * p.v[i];
+      // Half kick (as rigid_half_kick), then the drift; one rotation matrix
+      // per orientation and the reciprocal inertia once.
+      p.v[i] += (half_dt * p.inv_mass[i]) * p.f[i];
+      p.angular_momentum[i] += half_dt * p.torque[i];
       const Vec3& L = p.angular_momentum[i];
-      const Quat q_half = rotate(p.orientation[i], p.omega[i], 0.5 * dt);
-      const Vec3 w_mid = angular_velocity(q_half, p.inertia[i], L);
-      p.orientation[i] = rotate(p.orientation[i], w_mid, dt);
+      const Vec3 inv_inertia = p.inertia[i].cwiseInverse();
+      const Quat q0 = p.orientation[i];
+      const Eigen::Matrix3d R0 = q0.toRotationMatrix();
+      const Vec3 w0 = R0 * (R0.transpose() * L).cwiseProduct(inv_inertia);
+      p.x[i] += dt * p.v[i];
+      const Quat q_half = rotate(q0, w0, half_dt);
+      const Eigen::Matrix3d Rh = q_half.toRotationMatrix();
+      const Vec3 w_mid = Rh * (Rh.transpose() * L).cwiseProduct(inv_inertia);
+      p.orientation[i] = rotate(q0, w_mid, dt);
       // One rotation matrix for both the new omega and the PW85 form.
       const Eigen::Matrix3d R = p.orientation[i].toRotationMatrix();
-      p.omega[i] = angular_velocity(R, p.inertia[i], L);
+      p.omega[i] = R * (R.transpose() * L).cwiseProduct(inv_inertia);
       if (p.shape[i] == kEllipsoid) p.form[i] = contact::quadratic_form(p.semi_axes[i], R);
     }
   }
