@@ -75,7 +75,11 @@ bool Validator::check_map(const YAML::Node& n, const sim::EffectDoc& doc, const 
   std::vector<std::string> valid;
   for (const auto& k : doc.keys) valid.push_back(k.name);
   for (const auto& kv : n) {
-    const std::string k = kv.first.as<std::string>();
+    if (!kv.first.IsScalar()) {  // e.g. `? [a, b] : 1` or a tagged key
+      error(kv.first, ctx, "keys must be plain names, got " + describe(kv.first) + "; valid keys: " + join(valid, ", "));
+      continue;
+    }
+    const std::string k = kv.first.Scalar();
     if (doc.find(k)) continue;
     const std::string guess = closest(k, valid);
     error(kv.first, ctx,

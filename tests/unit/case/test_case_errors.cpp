@@ -101,6 +101,15 @@ TEST(CaseErrors, UnknownMaterialAndChoice) {
             std::string::npos) << p;
 }
 
+TEST(CaseErrors, NonScalarKeysAreErrorsNotCrashes) {
+  // Found by tests/fuzz/fuzz_case: a key that is a list, and a tagged key in
+  // a flow map, used to escape as a yaml-cpp conversion exception.
+  const auto m = errors_of(replace(kGood, "    friction: 0.5", "    ? [a, b]\n    : 0.5"));
+  EXPECT_NE(m.find("case.yaml:9:7: materials[0]: keys must be plain names, got a list"), std::string::npos) << m;
+  const auto t = errors_of(replace(kGood, "{type: random_fill, region:", "{type: random_fill,!region:"));
+  EXPECT_NE(t.find("keys must be plain names"), std::string::npos) << t;
+}
+
 TEST(CaseErrors, YamlSyntaxError) {
   const auto m = errors_of(replace(kGood, "  max: [0.01, 0.01, 0.01]", "  max: [0.01, 0.01, 0.01"));
   EXPECT_NE(m.find("case.yaml:"), std::string::npos);
