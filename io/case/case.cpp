@@ -109,6 +109,7 @@ class CaseParser {
       mat.friction = v_.number(m, d, "friction", ctx, 0);
       mat.rolling_friction = v_.number(m, d, "rolling_friction", ctx, 0);
       mat.cohesion = v_.number(m, d, "cohesion_energy_density", ctx, 0);
+      if (!m["name"]) continue;  // reported as a missing required key
       if (material_index_.count(mat.name)) v_.error(m["name"], ctx, "material '" + mat.name + "' is defined twice");
       material_index_[mat.name] = static_cast<int>(c_.scene.materials.size());
       c_.scene.materials.push_back(mat);

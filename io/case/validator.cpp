@@ -54,7 +54,15 @@ std::string closest(const std::string& word, const std::vector<std::string>& can
 std::string Validator::where(const YAML::Node& n) const {
   for (const auto& [node, text] : overrides_)
     if (node.is(n)) return "--set " + text;
-  const auto m = n.Mark();
+  // A node looked up under a missing key has no position (yaml-cpp throws
+  // when asked for it): the file is all we can say then.
+  if (!n.IsDefined()) return file_;
+  YAML::Mark m;
+  try {
+    m = n.Mark();
+  } catch (const YAML::Exception&) {
+    return file_;
+  }
   if (m.is_null()) return file_;
   return file_ + ":" + std::to_string(m.line + 1) + ":" + std::to_string(m.column + 1);
 }

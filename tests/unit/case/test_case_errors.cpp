@@ -108,6 +108,10 @@ TEST(CaseErrors, NonScalarKeysAreErrorsNotCrashes) {
   EXPECT_NE(m.find("case.yaml:9:7: materials[0]: keys must be plain names, got a list"), std::string::npos) << m;
   const auto t = errors_of(replace(kGood, "{type: random_fill, region:", "{type: random_fill,!region:"));
   EXPECT_NE(t.find("keys must be plain names"), std::string::npos) << t;
+  // Two materials without names: missing keys reported, no crash on the duplicate check.
+  const auto d = errors_of(replace(replace(kGood, "  - name: glass\n", "  - density: 1\n"),
+                                   "materials:\n", "materials:\n  - {density: 2}\n"));
+  EXPECT_NE(d.find("missing required key 'name'"), std::string::npos) << d;
 }
 
 TEST(CaseErrors, YamlSyntaxError) {
