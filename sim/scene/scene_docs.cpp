@@ -32,7 +32,7 @@ std::vector<EffectDoc> scene_docs() {
                {key("min", K::Vec3, "lower corner").req().si("m"), key("max", K::Vec3, "upper corner").req().si("m")}});
   d.push_back({"force.gravity", "gravity: [gx, gy, gz]", "Uniform gravity, F = m g, applied where forces are cleared each step; absent or zero costs nothing.",
                {key("gravity", K::Vec3, "acceleration").si("m/s^2")}});
-  d.push_back({"particles", "particles: [ {...}, ... ]", "A set of spherical particles.",
+  d.push_back({"particles", "particles: [ {...}, ... ]", "A set of particles: spheres, ellipsoids or rigid clumps (see particles.shape).",
                {key("name", K::String, "label").def("set<k>"),
                 key("material", K::String, "material name").req(),
                 key("radius", K::Number,
