@@ -63,7 +63,16 @@ TriangleMesh read_off(const std::string& path) {
                                                 std::to_string(nf) + " faces)");
     }
   };
-  mesh.vertices.reserve(nv);
+  // The declared counts must fit in the file before anything is allocated
+  // for them (a corrupt count must not ask for terabytes; found by fuzzing).
+  const auto remaining = static_cast<long>(lines.size() - li);
+  if (nv > remaining || nf > remaining - nv) {
+    throw MeshError(MeshErrorKind::parse, path + ":" + std::to_string(counts_line) + ": OFF declares " +
+                                              std::to_string(nv) + " vertices and " + std::to_string(nf) +
+                                              " faces, but only " + std::to_string(remaining) +
+                                              " lines follow (truncated file or wrong counts)");
+  }
+  mesh.vertices.reserve(static_cast<std::size_t>(nv));
   for (long i = 0; i < nv; ++i, ++li) {
     need("vertex", i);
     detail::Tokenizer t(lines[li].first, false);

@@ -94,7 +94,12 @@ TEST(MeshReaders, SyntaxErrorsNameTheLine) {
   const auto stl = temp_file("bad.stl", "solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 zero\n");
   expect_error([&] { read_stl(stl); }, MeshErrorKind::parse, {":4:", "'zero'"});
   const auto off2 = temp_file("short.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n");
-  expect_error([&] { read_off(off2); }, MeshErrorKind::parse, {"before vertex 2"});
+  expect_error([&] { read_off(off2); }, MeshErrorKind::parse,
+               {":2:", "declares 4 vertices and 4 faces, but only 2 lines follow"});
+  // Found by fuzz_mesh_off: a huge declared count used to be reserved before
+  // it was checked against the file.
+  const auto huge = temp_file("huge.off", "OFF\n488888888882 9\n6  2 19\n 3  1 5 9\n");
+  expect_error([&] { read_off(huge); }, MeshErrorKind::parse, {"declares 488888888882 vertices"});
 }
 
 TEST(MeshReaders, UnknownFormatAndMissingFile) {
