@@ -69,23 +69,11 @@ void Nufft3d::type1(std::span<const Complex> c, std::span<Complex> f, int sign) 
   spreader_.spread(reinterpret_cast<const double*>(c.data()), 2, grid_.data());
   execute_fine_fft(sign);
   const Complex* g = reinterpret_cast<const Complex*>(grid_.data());
-  const int N1 = modes_[0], N2 = modes_[1], N3 = modes_[2];
-  const int h1 = N1 / 2, h2 = N2 / 2, h3 = N3 / 2;
-  const int n1 = fine_[0], n2 = fine_[1], n3 = fine_[2];
-#pragma omp parallel for num_threads(spreader_.threads()) schedule(static)
-  for (int i3 = 0; i3 < N3; ++i3) {
-    const int g3 = ((i3 - h3) % n3 + n3) % n3;
-    for (int i2 = 0; i2 < N2; ++i2) {
-      const int g2 = ((i2 - h2) % n2 + n2) % n2;
-      const double d23 = deconv_[2][i3] * deconv_[1][i2];
-      const Complex* row = g + (static_cast<std::size_t>(g3) * n2 + g2) * n1;
-      Complex* out = f.data() + (static_cast<std::size_t>(i3) * N2 + i2) * N1;
-      for (int i1 = 0; i1 < N1; ++i1) {
-        const int g1 = i1 - h1 < 0 ? i1 - h1 + n1 : i1 - h1;
-        out[i1] = row[g1] * (d23 * deconv_[0][i1]);
-      }
-    }
-  }
+  for_each_mode_row([&](std::size_t grid_row, std::size_t mode_row, double d23, const int* g1) {
+    const Complex* row = g + grid_row;
+    Complex* out = f.data() + mode_row;
+    for (int i1 = 0; i1 < modes_[0]; ++i1) out[i1] = row[g1[i1]] * (d23 * deconv_[0][i1]);
+  });
 }
 
 void Nufft3d::type2(std::span<const Complex> f, std::span<Complex> c, int sign) {
@@ -94,23 +82,11 @@ void Nufft3d::type2(std::span<const Complex> f, std::span<Complex> c, int sign) 
   if (c.empty()) return;
   grid_.zero();
   Complex* g = reinterpret_cast<Complex*>(grid_.data());
-  const int N1 = modes_[0], N2 = modes_[1], N3 = modes_[2];
-  const int h1 = N1 / 2, h2 = N2 / 2, h3 = N3 / 2;
-  const int n1 = fine_[0], n2 = fine_[1], n3 = fine_[2];
-#pragma omp parallel for num_threads(spreader_.threads()) schedule(static)
-  for (int i3 = 0; i3 < N3; ++i3) {
-    const int g3 = ((i3 - h3) % n3 + n3) % n3;
-    for (int i2 = 0; i2 < N2; ++i2) {
-      const int g2 = ((i2 - h2) % n2 + n2) % n2;
-      const double d23 = deconv_[2][i3] * deconv_[1][i2];
-      Complex* row = g + (static_cast<std::size_t>(g3) * n2 + g2) * n1;
-      const Complex* in = f.data() + (static_cast<std::size_t>(i3) * N2 + i2) * N1;
-      for (int i1 = 0; i1 < N1; ++i1) {
-        const int g1 = i1 - h1 < 0 ? i1 - h1 + n1 : i1 - h1;
-        row[g1] = in[i1] * (d23 * deconv_[0][i1]);
-      }
-    }
-  }
+  for_each_mode_row([&](std::size_t grid_row, std::size_t mode_row, double d23, const int* g1) {
+    Complex* row = g + grid_row;
+    const Complex* in = f.data() + mode_row;
+    for (int i1 = 0; i1 < modes_[0]; ++i1) row[g1[i1]] = in[i1] * (d23 * deconv_[0][i1]);
+  });
   execute_fine_fft(sign);
   spreader_.interpolate(grid_.data(), reinterpret_cast<double*>(c.data()));
 }

@@ -68,6 +68,29 @@ class Nufft3d {
   void execute_fine_fft(int sign);
 
  private:
+  // Calls fn(fine-grid row offset, mode row offset, deconvolution weight of
+  // the (i2, i3) row, fine-grid index of each i1) for every row of modes,
+  // rows in parallel: the shared index map of type 1 (gather from the fine
+  // grid) and type 2 (scatter into it); distinct modes map to distinct
+  // fine-grid points, so the rows never collide.
+  template <class Fn>
+  void for_each_mode_row(Fn&& fn) const {
+    const int N1 = modes_[0], N2 = modes_[1], N3 = modes_[2];
+    const int h1 = N1 / 2, h2 = N2 / 2, h3 = N3 / 2;
+    const int n1 = fine_[0], n2 = fine_[1], n3 = fine_[2];
+    std::vector<int> g1(static_cast<std::size_t>(N1));
+    for (int i1 = 0; i1 < N1; ++i1) g1[i1] = i1 - h1 < 0 ? i1 - h1 + n1 : i1 - h1;
+#pragma omp parallel for num_threads(spreader_.threads()) schedule(static)
+    for (int i3 = 0; i3 < N3; ++i3) {
+      const int g3 = ((i3 - h3) % n3 + n3) % n3;
+      for (int i2 = 0; i2 < N2; ++i2) {
+        const int g2 = ((i2 - h2) % n2 + n2) % n2;
+        fn((static_cast<std::size_t>(g3) * n2 + g2) * n1, (static_cast<std::size_t>(i3) * N2 + i2) * N1,
+           deconv_[2][i3] * deconv_[1][i2], g1.data());
+      }
+    }
+  }
+
   std::array<int, 3> modes_;
   KernelSpec kernel_;
   std::array<int, 3> fine_;
