@@ -11,6 +11,8 @@
 // The balls' own integrators skip them (VerletDrift<.., true>); in scenes
 // with ellipsoids the rigid-body integrator moves them too, and the body
 // stages, which run after it in each phase, overwrite that.
+#include <vector>
+
 #include "sim/integrate/rigid_body.hpp"
 #include "sim/scene/stage.hpp"
 
@@ -19,7 +21,9 @@ namespace grains::sim {
 /// Sets every clump ball from its body: position (when `positions`),
 /// velocity, and the angular velocity / orientation fields when they exist.
 inline void place_clump_balls(ParticleStore& p, const BodyStore& b, bool positions) {
-  std::vector<Eigen::Matrix3d> R(b.size());
+  // Reused across calls: this runs twice per step, and must not allocate.
+  static thread_local std::vector<Eigen::Matrix3d> R;
+  R.resize(b.size());
   for (std::size_t k = 0; k < b.size(); ++k) R[k] = b.orientation[k].toRotationMatrix();
   const bool spin = p.fields().has(Field::AngularVelocity), orient = p.fields().has(Field::Orientation);
   const bool mom = p.fields().has(Field::AngularMomentum);
