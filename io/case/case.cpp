@@ -73,6 +73,7 @@ class CaseParser {
     parse_walls(root["walls"]);
     parse_time(root["time"]);
     parse_neighbor(root["neighbor"]);
+    parse_parallel(root["parallel"]);
     parse_output(root["output"]);
     parse_checkpoint(root["checkpoint"]);
   }
@@ -87,6 +88,29 @@ class CaseParser {
     dom.hi = v_.vec3(n, d, "max", "domain");
     if (n["min"] && n["max"] && ((dom.hi - dom.lo).array() <= 0).any())
       v_.error(n["max"], "domain", "max must exceed min in every coordinate");
+    dom.periodic = v_.bool3(n, d, "periodic", "domain");
+  }
+
+  void parse_parallel(const YAML::Node& n) {
+    if (!n) return;
+    const auto& d = doc("parallel");
+    if (!v_.check_map(n, d, "parallel")) return;
+    auto& par = c_.scene.parallel;
+    par.where = v_.where(n);
+    par.deterministic = v_.boolean(n, d, "deterministic", "parallel", false);
+    par.balance_threshold = v_.number(n, d, "balance_threshold", "parallel", 1.2);
+    if (n["decomposition"]) {
+      const auto v = v_.vec3(n, d, "decomposition", "parallel", sim::Vec3::Zero());
+      for (int k = 0; k < 3; ++k) {
+        if (v[k] < 1 || v[k] != std::floor(v[k])) {
+          v_.error(n["decomposition"], "parallel", "decomposition must be 3 positive integers [nx, ny, nz] whose "
+                                                   "product is the number of MPI ranks");
+          break;
+        }
+        par.dims[k] = static_cast<int>(v[k]);
+      }
+      par.where = v_.where(n["decomposition"]);
+    }
   }
 
   void parse_materials(const YAML::Node& n) {

@@ -206,6 +206,27 @@ sim::Vec3 Validator::vec3(const YAML::Node& map, const sim::EffectDoc& doc, cons
   return v;
 }
 
+std::array<bool, 3> Validator::bool3(const YAML::Node& map, const sim::EffectDoc& doc, const std::string& k,
+                                     const std::string& ctx, std::array<bool, 3> fallback) {
+  (void)spec(doc, k);
+  const YAML::Node n = map[k];
+  if (!n) return fallback;
+  auto one = [](const YAML::Node& e, bool& out) {
+    if (!e.IsScalar()) return false;
+    const std::string t = e.Scalar();
+    if (t == "true" || t == "True" || t == "yes" || t == "on") return out = true, true;
+    if (t == "false" || t == "False" || t == "no" || t == "off") return out = false, true;
+    return false;
+  };
+  bool b = false;
+  if (one(n, b)) return {b, b, b};
+  std::array<bool, 3> v{};
+  if (n.IsSequence() && n.size() == 3 && one(n[0], v[0]) && one(n[1], v[1]) && one(n[2], v[2])) return v;
+  error(n, ctx, k + " must be true, false or a list of 3 booleans [x, y, z], got " + describe(n) +
+                    (n.IsSequence() ? " with " + std::to_string(n.size()) + " entries" : ""));
+  return fallback;
+}
+
 std::vector<double> Validator::numbers(const YAML::Node& map, const sim::EffectDoc& doc, const std::string& k,
                                        const std::string& ctx) {
   (void)spec(doc, k);

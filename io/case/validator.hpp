@@ -3,6 +3,7 @@
 // (sim/scene/effect_doc.hpp) and collects every problem with its location,
 // so a user sees all mistakes of a case file at once:
 //   case.yaml:12:5: materials[0]: unknown key 'frction'; did you mean 'friction'? valid keys: ...
+#include <array>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,9 @@ class Validator {
                      const std::string& ctx, const std::string& fallback = "");
   sim::Vec3 vec3(const YAML::Node& map, const sim::EffectDoc& doc, const std::string& k, const std::string& ctx,
                  const sim::Vec3& fallback = sim::Vec3::Zero());
+  /// One boolean for all three axes, or a list of three.
+  std::array<bool, 3> bool3(const YAML::Node& map, const sim::EffectDoc& doc, const std::string& k,
+                            const std::string& ctx, std::array<bool, 3> fallback = {false, false, false});
   std::vector<double> numbers(const YAML::Node& map, const sim::EffectDoc& doc, const std::string& k,
                               const std::string& ctx);
   /// A scalar as a number (no range check); records an error if it is not one.

@@ -11,6 +11,7 @@
 // The balls' own integrators skip them (VerletDrift<.., true>); in scenes
 // with ellipsoids the rigid-body integrator moves them too, and the body
 // stages, which run after it in each phase, overwrite that.
+#include <algorithm>
 #include <vector>
 
 #include "sim/integrate/rigid_body.hpp"
@@ -62,14 +63,32 @@ class ClumpForces final : public Stage {
     }
     const bool tau = p.fields().has(Field::Torque);
     const std::size_t n = p.n_owned();
-    for (std::size_t i = 0; i < n; ++i) {
-      if (p.body[i] < 0) continue;
+    auto add = [&](std::size_t i) {
       const auto k = static_cast<std::size_t>(b.index_of(p.body[i]));
       b.force[k] += p.f[i];
       b.torque[k] += (p.x[i] - b.x[k]).cross(p.f[i]);
       if (tau) b.torque[k] += p.torque[i];
+    };
+    if (!s.deterministic) {
+      for (std::size_t i = 0; i < n; ++i)
+        if (p.body[i] >= 0) add(i);
+      return;
     }
+    // Deterministic mode: the balls in global-id order, whatever their local
+    // order (which depends on ranks and re-sorting); refreshed at rebuilds.
+    if (order_builds_ != s.neighbors.stats().builds || order_.size() > n) {
+      order_.clear();
+      for (std::size_t i = 0; i < n; ++i)
+        if (p.body[i] >= 0) order_.push_back(i);
+      std::sort(order_.begin(), order_.end(), [&p](std::size_t a, std::size_t c) { return p.id[a] < p.id[c]; });
+      order_builds_ = s.neighbors.stats().builds;
+    }
+    for (const auto i : order_) add(i);
   }
+
+ private:
+  std::vector<std::size_t> order_;
+  long order_builds_ = -1;
 };
 
 class ClumpDrift final : public Stage {

@@ -56,8 +56,9 @@ inline Quat rotate(const Quat& q, const Vec3& w, double dt) {
 }
 
 inline void rigid_half_kick(ParticleStore& p, double half_dt) {
-  const std::size_t n = p.n_owned();
-  for (std::size_t i = 0; i < n; ++i) {
+  const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
+#pragma omp parallel for schedule(static) if (n > 4096)
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
     p.v[i] += (half_dt * p.inv_mass[i]) * p.f[i];
     p.angular_momentum[i] += half_dt * p.torque[i];
     p.omega[i] = angular_velocity(p.orientation[i], p.inertia[i], p.angular_momentum[i]);
@@ -78,8 +79,9 @@ class RigidBodyDrift final : public Stage {
     ParticleStore& p = s.particles;
     const double dt = s.clock.dt;
     const double half_dt = 0.5 * dt;
-    const std::size_t n = p.n_owned();
-    for (std::size_t i = 0; i < n; ++i) {
+    const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
       // Half kick (as rigid_half_kick), then the drift; one rotation matrix
       // per orientation and the reciprocal inertia once.
       p.v[i] += (half_dt * p.inv_mass[i]) * p.f[i];

@@ -16,18 +16,21 @@ namespace grains::sim {
 // their body (integrate/clump_bodies.hpp), not here.
 template <bool Rotation, bool SkipClumpBalls = false>
 inline void verlet_half_kick(ParticleStore& p, double half_dt) {
-  const std::size_t n = p.n_owned();
-  for (std::size_t i = 0; i < n; ++i) {
+  const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
+#pragma omp parallel for schedule(static) if (n > 4096)
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
     if constexpr (SkipClumpBalls)
       if (p.body[i] >= 0) continue;
     p.v[i] += (half_dt * p.inv_mass[i]) * p.f[i];
   }
-  if constexpr (Rotation)
-    for (std::size_t i = 0; i < n; ++i) {
+  if constexpr (Rotation) {
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
       if constexpr (SkipClumpBalls)
         if (p.body[i] >= 0) continue;
       p.omega[i] += (half_dt / p.inertia[i].x()) * p.torque[i];
     }
+  }
 }
 
 template <bool Rotation, bool SkipClumpBalls = false>
@@ -42,8 +45,9 @@ class VerletDrift final : public Stage {
     ParticleStore& p = s.particles;
     const double dt = s.clock.dt;
     verlet_half_kick<Rotation, SkipClumpBalls>(p, 0.5 * dt);
-    const std::size_t n = p.n_owned();
-    for (std::size_t i = 0; i < n; ++i) {
+    const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
       if constexpr (SkipClumpBalls)
         if (p.body[i] >= 0) continue;
       p.x[i] += dt * p.v[i];

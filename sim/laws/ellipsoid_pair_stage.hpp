@@ -12,6 +12,7 @@
 #include "contact/ellipsoid/point_ellipsoid.hpp"
 #include "contact/sphere.hpp"
 #include "sim/laws/contact_law.hpp"
+#include "sim/laws/entry_forces.hpp"
 #include "sim/scene/stage.hpp"
 
 namespace grains::sim {
@@ -84,45 +85,79 @@ class ShapePairContactStage final : public Stage {
   Phase phase() const override { return Phase::Force; }
 
   void run(Scene& s) override {
+    if (s.deterministic)
+      run_deferred(s);
+    else
+      run_direct(s);
+  }
+
+ private:
+  static constexpr int H = Law::history_size;
+  static constexpr int NH = H + 1;  // + PW85 lambda
+
+  static bool contact(Scene& s, std::size_t i, std::uint32_t k, Vec3& force, Vec3& ti, Vec3& tj) {
     ParticleStore& p = s.particles;
     NeighborList& nl = s.neighbors;
-    constexpr int H = Law::history_size;
-    constexpr int NH = H + 1;  // + PW85 lambda
-    const double dt = s.clock.dt;
-    const std::size_t rows = nl.row_start.empty() ? 0 : nl.row_start.size() - 1;
-    for (std::size_t i = 0; i < rows; ++i) {
-      for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
-        const std::size_t j = nl.partner[k];
-        double* hist = nl.history.data() + static_cast<std::size_t>(k) * NH;
-        const auto& pc = nl.pair_constants[k];
-        if ((p.x[i] - p.x[j]).squaredNorm() >= pc.contact2) {  // bounding spheres apart
-          std::fill_n(hist, NH, 0.0);
-          hist[H] = -1.0;
-          continue;
-        }
-        double lambda = hist[H] > 0 ? hist[H] : -1.0;
-        contact::ContactGeometry g;
-        // A pair with tangential history touched at the previous step.
-        bool maybe_apart = true;
-        for (int h = 0; h < H; ++h) maybe_apart = maybe_apart && hist[h] == 0.0;
-        const bool touching = shape_pair_geometry(p, i, j, lambda, g, maybe_apart);
-        hist[H] = lambda;
-        if (!touching) {
-          if constexpr (H > 0) std::fill_n(hist, H, 0.0);
-          continue;
-        }
-        const PairParams& pp = s.pairs(p.material[i], p.material[j]);
-        const Vec3 ci = g.point - p.x[i], cj = g.point - p.x[j];
-        const Vec3 v_rel = p.v[i] + p.omega[i].cross(ci) - p.v[j] - p.omega[j].cross(cj);
-        const Vec3 w_rel = p.omega[i] - p.omega[j];
-        const auto r = Law::evaluate(g, v_rel, w_rel, pc.mass, pp, dt, hist);
-        p.f[i] += r.force;
-        p.f[j] -= r.force;
-        p.torque[i] += ci.cross(r.force) + r.rolling_torque;
-        p.torque[j] -= cj.cross(r.force) + r.rolling_torque;
-      }
+    const std::size_t j = nl.partner[k];
+    double* hist = nl.history.data() + static_cast<std::size_t>(k) * NH;
+    const auto& pc = nl.pair_constants[k];
+    if ((p.x[i] - p.x[j]).squaredNorm() >= pc.contact2) {  // bounding spheres apart
+      std::fill_n(hist, NH, 0.0);
+      hist[H] = -1.0;
+      return false;
     }
+    double lambda = hist[H] > 0 ? hist[H] : -1.0;
+    contact::ContactGeometry g;
+    // A pair with tangential history touched at the previous step.
+    bool maybe_apart = true;
+    for (int h = 0; h < H; ++h) maybe_apart = maybe_apart && hist[h] == 0.0;
+    const bool touching = shape_pair_geometry(p, i, j, lambda, g, maybe_apart);
+    hist[H] = lambda;
+    if (!touching) {
+      if constexpr (H > 0) std::fill_n(hist, H, 0.0);
+      return false;
+    }
+    const PairParams& pp = s.pairs(p.material[i], p.material[j]);
+    const Vec3 ci = g.point - p.x[i], cj = g.point - p.x[j];
+    const Vec3 v_rel = p.v[i] + p.omega[i].cross(ci) - p.v[j] - p.omega[j].cross(cj);
+    const Vec3 w_rel = p.omega[i] - p.omega[j];
+    const auto r = Law::evaluate(g, v_rel, w_rel, pc.mass, pp, s.clock.dt, hist);
+    force = r.force;
+    ti = ci.cross(r.force) + r.rolling_torque;
+    tj = -(cj.cross(r.force) + r.rolling_torque);
+    return true;
   }
+
+  void run_direct(Scene& s) {
+    ParticleStore& p = s.particles;
+    const NeighborList& nl = s.neighbors;
+    const std::size_t rows = nl.row_start.empty() ? 0 : nl.row_start.size() - 1;
+    Vec3 f, ti, tj;
+    for (std::size_t i = 0; i < rows; ++i)
+      for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
+        if (!contact(s, i, k, f, ti, tj)) continue;
+        const std::size_t j = nl.partner[k];
+        p.f[i] += f;
+        p.f[j] -= f;
+        p.torque[i] += ti;
+        p.torque[j] += tj;
+      }
+  }
+
+  void run_deferred(Scene& s) {
+    const NeighborList& nl = s.neighbors;
+    const auto rows = static_cast<std::ptrdiff_t>(nl.row_start.empty() ? 0 : nl.row_start.size() - 1);
+    e_.resize<true>(nl.partner.size());
+#pragma omp parallel for schedule(dynamic, 64)
+    for (std::ptrdiff_t ii = 0; ii < rows; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k)
+        if (!contact(s, i, k, e_.f[k], e_.ti[k], e_.tj[k])) e_.zero<true>(k);
+    }
+    gather_entry_forces<true>(s.particles, nl, e_);
+  }
+
+  EntryForces e_;
 };
 
 }  // namespace grains::sim

@@ -6,6 +6,7 @@
 
 #include "contact/sphere.hpp"
 #include "sim/laws/contact_law.hpp"
+#include "sim/laws/entry_forces.hpp"
 #include "sim/scene/stage.hpp"
 
 namespace grains::sim {
@@ -17,58 +18,102 @@ class PairContactStage final : public Stage {
   Phase phase() const override { return Phase::Force; }
 
   void run(Scene& s) override {
+    if (s.deterministic)
+      run_deferred(s);
+    else
+      run_direct(s);
+  }
+
+ private:
+  static constexpr int H = Law::history_size;
+  static constexpr bool Rot = Law::needs_rotation;
+
+  // The contact of list entry k (row i): false when the pair does not touch.
+  static bool contact(Scene& s, std::size_t i, std::uint32_t k, Vec3& force, Vec3& ti, Vec3& tj) {
     ParticleStore& p = s.particles;
     NeighborList& nl = s.neighbors;
-    constexpr int H = Law::history_size;
-    const double dt = s.clock.dt;
+    const std::size_t j = nl.partner[k];
+    // Cheap rejection first: most list entries are within the skin but not
+    // touching; their history is not even read unless the pair just separated.
+    auto& pc = nl.pair_constants[k];
+    const Vec3 d = p.x[i] - p.x[j];
+    const double d2 = d.squaredNorm();
+    if (d2 >= pc.contact2) {
+      if constexpr (H > 0)
+        if (pc.may_touch) std::fill_n(nl.history.data() + static_cast<std::size_t>(k) * H, H, 0.0);
+      pc.may_touch = false;
+      return false;
+    }
+    pc.may_touch = true;
+    double* hist = H > 0 ? nl.history.data() + static_cast<std::size_t>(k) * H : nullptr;
+    // Sphere-sphere geometry (as contact::sphere_sphere, with R* and m*
+    // from the list). The contact point lies on the line of centres, so
+    // the lever arms are -li n and +lj n: one cross product each for the
+    // relative velocity and the torques.
+    const double ri = p.radius[i];
+    contact::ContactGeometry g;
+    const double dist = std::sqrt(d2);
+    g.normal = dist > 0 ? Vec3(d * (1.0 / dist)) : Vec3(0, 0, 1);
+    g.overlap = ri + p.radius[j] - dist;
+    g.radius = pc.radius;
+    const PairParams& pp = s.pairs(p.material[i], p.material[j]);
+    const double li = ri - 0.5 * g.overlap, lj = p.radius[j] - 0.5 * g.overlap;
+    Vec3 v_rel = p.v[i] - p.v[j];
+    Vec3 w_rel = Vec3::Zero();
+    if constexpr (Rot) {
+      v_rel -= (li * p.omega[i] + lj * p.omega[j]).cross(g.normal);
+      w_rel = p.omega[i] - p.omega[j];
+    }
+    const auto r = Law::evaluate(g, v_rel, w_rel, pc.mass, pp, s.clock.dt, hist);
+    force = r.force;
+    if constexpr (Rot) {
+      const Vec3 nxf = g.normal.cross(r.force);
+      ti = r.rolling_torque - li * nxf;
+      tj = -(r.rolling_torque + lj * nxf);
+    }
+    return true;
+  }
+
+  // Serial: forces added as they come (fastest; order = list order).
+  void run_direct(Scene& s) {
+    ParticleStore& p = s.particles;
+    const NeighborList& nl = s.neighbors;
     const std::size_t rows = nl.row_start.empty() ? 0 : nl.row_start.size() - 1;
-    for (std::size_t i = 0; i < rows; ++i) {
-      const Vec3 xi = p.x[i];
-      const double ri = p.radius[i];
+    Vec3 f, ti, tj;
+    for (std::size_t i = 0; i < rows; ++i)
       for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
+        if (!contact(s, i, k, f, ti, tj)) continue;
         const std::size_t j = nl.partner[k];
-        // Cheap rejection first: most list entries are within the skin but not
-        // touching; their history is not even read unless the pair just separated.
-        auto& pc = nl.pair_constants[k];
-        const Vec3 d = xi - p.x[j];
-        const double d2 = d.squaredNorm();
-        if (d2 >= pc.contact2) {
-          if constexpr (H > 0)
-            if (pc.may_touch) std::fill_n(nl.history.data() + static_cast<std::size_t>(k) * H, H, 0.0);
-          pc.may_touch = false;
-          continue;
+        p.f[i] += f;
+        p.f[j] -= f;
+        if constexpr (Rot) {
+          p.torque[i] += ti;
+          p.torque[j] += tj;
         }
-        pc.may_touch = true;
-        double* hist = H > 0 ? nl.history.data() + static_cast<std::size_t>(k) * H : nullptr;
-        // Sphere-sphere geometry (as contact::sphere_sphere, with R* and m*
-        // from the list). The contact point lies on the line of centres, so
-        // the lever arms are -li n and +lj n: one cross product each for the
-        // relative velocity and the torques.
-        contact::ContactGeometry g;
-        const double dist = std::sqrt(d2);
-        g.normal = dist > 0 ? Vec3(d * (1.0 / dist)) : Vec3(0, 0, 1);
-        g.overlap = ri + p.radius[j] - dist;
-        g.radius = pc.radius;
-        const double m = pc.mass;
-        const PairParams& pp = s.pairs(p.material[i], p.material[j]);
-        const double li = ri - 0.5 * g.overlap, lj = p.radius[j] - 0.5 * g.overlap;
-        Vec3 v_rel = p.v[i] - p.v[j];
-        Vec3 w_rel = Vec3::Zero();
-        if constexpr (Law::needs_rotation) {
-          v_rel -= (li * p.omega[i] + lj * p.omega[j]).cross(g.normal);
-          w_rel = p.omega[i] - p.omega[j];
-        }
-        const auto r = Law::evaluate(g, v_rel, w_rel, m, pp, dt, hist);
-        p.f[i] += r.force;
-        p.f[j] -= r.force;
-        if constexpr (Law::needs_rotation) {
-          const Vec3 nxf = g.normal.cross(r.force);
-          p.torque[i] += r.rolling_torque - li * nxf;
-          p.torque[j] -= r.rolling_torque + lj * nxf;
+      }
+  }
+
+  // Threads / deterministic: per-entry results, then an ordered gather.
+  void run_deferred(Scene& s) {
+    const NeighborList& nl = s.neighbors;
+    const auto rows = static_cast<std::ptrdiff_t>(nl.row_start.empty() ? 0 : nl.row_start.size() - 1);
+    e_.template resize<Rot>(nl.partner.size());
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::ptrdiff_t ii = 0; ii < rows; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      Vec3 dummy;
+      for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
+        if constexpr (Rot) {
+          if (!contact(s, i, k, e_.f[k], e_.ti[k], e_.tj[k])) e_.template zero<Rot>(k);
+        } else {
+          if (!contact(s, i, k, e_.f[k], dummy, dummy)) e_.template zero<Rot>(k);
         }
       }
     }
+    gather_entry_forces<Rot>(s.particles, nl, e_);
   }
+
+  EntryForces e_;
 };
 
 }  // namespace grains::sim

@@ -8,6 +8,61 @@
 
 namespace grains::sim {
 
+namespace {
+
+// The linked-cell grid over the particles' bounding box (within the given
+// bounds), so a sparse scene in a large domain does not pay for empty
+// cells; cells grow when there would be far more cells than particles.
+struct CellGrid {
+  Vec3 lo, inv;
+  std::array<int, 3> dims{1, 1, 1};
+  std::vector<std::uint32_t> cell_start;  // per cell, into order
+  std::vector<std::size_t> order;         // particle indices in cell order
+
+  CellGrid(const ParticleStore& p, std::size_t n, double skin, const Vec3& lo_bound, const Vec3& hi_bound) {
+    double rmax = 0;
+    for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, p.radius[i]);
+    lo = lo_bound;
+    Vec3 hi = hi_bound;
+    if (n > 0) {
+      Vec3 blo = p.x[0], bhi = p.x[0];
+      for (std::size_t i = 1; i < n; ++i) {
+        blo = blo.cwiseMin(p.x[i]);
+        bhi = bhi.cwiseMax(p.x[i]);
+      }
+      // Ghosts (periodic images, other ranks) may lie outside the bounds.
+      lo = n > p.n_owned() ? blo : lo.cwiseMax(blo);
+      hi = (n > p.n_owned() ? bhi : hi.cwiseMin(bhi)).cwiseMax(lo + Vec3::Constant(1e-12));
+    }
+    double cell = std::max(2 * rmax + skin, 1e-300);
+    for (;;) {
+      for (int d = 0; d < 3; ++d) dims[d] = std::max(1, static_cast<int>(std::floor((hi[d] - lo[d]) / cell)));
+      if (static_cast<double>(dims[0]) * dims[1] * dims[2] <= 4.0 * static_cast<double>(n) + 64) break;
+      cell *= 1.26;
+    }
+    inv = Vec3(dims[0] / (hi[0] - lo[0]), dims[1] / (hi[1] - lo[1]), dims[2] / (hi[2] - lo[2]));
+    const std::size_t ncells = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+    std::vector<std::uint32_t> cell_id(n);
+    cell_start.assign(ncells + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto c = (static_cast<std::size_t>(cell_of(p.x[i], 2)) * dims[1] + cell_of(p.x[i], 1)) * dims[0] +
+                     cell_of(p.x[i], 0);
+      cell_id[i] = static_cast<std::uint32_t>(c);
+      ++cell_start[c + 1];
+    }
+    std::partial_sum(cell_start.begin(), cell_start.end(), cell_start.begin());
+    order.resize(n);
+    std::vector<std::uint32_t> fill(cell_start.begin(), cell_start.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) order[fill[cell_id[i]]++] = i;
+  }
+  int cell_of(const Vec3& x, int d) const {
+    const int c = static_cast<int>((x[d] - lo[d]) * inv[d]);
+    return std::clamp(c, 0, dims[d] - 1);
+  }
+};
+
+}  // namespace
+
 bool NeighborList::needs_rebuild(const ParticleStore& p, const Walls& walls, double time) const {
   const std::size_t n = p.n_owned();
   if (x_build_.size() != n) return true;
@@ -17,63 +72,28 @@ bool NeighborList::needs_rebuild(const ParticleStore& p, const Walls& walls, dou
   return 2 * m > skin_ || m + walls.max_displacement(time - build_time_) > skin_;
 }
 
+void NeighborList::sort_by_cell(ParticleStore& p, const Vec3& lo, const Vec3& hi) const {
+  const CellGrid grid(p, p.n_owned(), skin_, lo, hi);
+  p.permute(grid.order);
+}
+
 void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bound, const Vec3& hi_bound, double time,
                          bool sort) {
-  const std::size_t n = p.n_owned();
-  // Remember the old rows by global id, so history can follow its pair.
+  const std::size_t n_own = p.n_owned();
+  if (sort && p.n_ghost() == 0) sort_by_cell(p, lo_bound, hi_bound);
+  const std::size_t n = p.size();
+  // The previous rows, for carrying history by global ids.
+  std::vector<std::uint32_t> old_row_start, old_partner;
+  std::vector<double> old_history;
   if (history_size_ > 0) {
-    old_row_start_ = row_start;
-    old_history_.swap(history);
-    old_partner_id_.resize(partner.size());
-    for (std::size_t k = 0; k < partner.size(); ++k) old_partner_id_[k] = old_row_id_.empty() ? -1 : old_row_id_[partner[k]];
+    old_row_start.swap(row_start);
+    old_partner.swap(partner);
+    old_history.swap(history);
   }
-
-  double rmax = 0;
-  for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, p.radius[i]);
-  // The grid spans the particles' bounding box (within the given bounds), so
-  // a sparse scene in a large domain does not pay for empty cells; cells
-  // grow when there would be far more cells than particles.
-  Vec3 lo = lo_bound, hi = hi_bound;
-  if (n > 0) {
-    Vec3 blo = p.x[0], bhi = p.x[0];
-    for (std::size_t i = 1; i < n; ++i) {
-      blo = blo.cwiseMin(p.x[i]);
-      bhi = bhi.cwiseMax(p.x[i]);
-    }
-    lo = lo.cwiseMax(blo);
-    hi = hi.cwiseMin(bhi).cwiseMax(lo + Vec3::Constant(1e-12));
-  }
-  double cell = std::max(2 * rmax + skin_, 1e-300);
-  std::array<int, 3> dims;
-  for (;;) {
-    for (int d = 0; d < 3; ++d) dims[d] = std::max(1, static_cast<int>(std::floor((hi[d] - lo[d]) / cell)));
-    if (static_cast<double>(dims[0]) * dims[1] * dims[2] <= 4.0 * static_cast<double>(n) + 64) break;
-    cell *= 1.26;
-  }
-  const Vec3 inv(dims[0] / (hi[0] - lo[0]), dims[1] / (hi[1] - lo[1]), dims[2] / (hi[2] - lo[2]));
-  auto cell_of = [&](const Vec3& x, int d) {
-    const int c = static_cast<int>((x[d] - lo[d]) * inv[d]);
-    return std::clamp(c, 0, dims[d] - 1);
-  };
-  const std::size_t ncells = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
-  std::vector<std::uint32_t> cell_id(n), cell_start(ncells + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto c = (static_cast<std::size_t>(cell_of(p.x[i], 2)) * dims[1] + cell_of(p.x[i], 1)) * dims[0] +
-                   cell_of(p.x[i], 0);
-    cell_id[i] = static_cast<std::uint32_t>(c);
-    ++cell_start[c + 1];
-  }
-  std::partial_sum(cell_start.begin(), cell_start.end(), cell_start.begin());
-  std::vector<std::size_t> order(n);
-  {
-    std::vector<std::uint32_t> fill(cell_start.begin(), cell_start.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) order[fill[cell_id[i]]++] = i;
-  }
-  if (sort) {
-    p.permute(order);  // particles now sorted by cell
-    for (std::size_t k = 0; k < n; ++k) order[k] = k;
-  }
-  // order[k]: particle index of the k-th slot in cell order.
+  const CellGrid grid(p, n, skin_, lo_bound, hi_bound);
+  const auto& dims = grid.dims;
+  const auto& cell_start = grid.cell_start;
+  const auto& order = grid.order;
 
   // Candidate pairs from the 13 forward neighbour cells and the own cell.
   std::vector<std::uint32_t> pi, pj;
@@ -85,37 +105,45 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   // Balls of the same clump never interact: in scenes with clumps (the
   // `body` field exists) their pairs are left out here, by a separate
   // instantiation of the loop, so sphere scenes pay nothing for the check.
-  auto collect = [&](auto exclude_same_body) {
-  for (int cz = 0; cz < dims[2]; ++cz)
-    for (int cy = 0; cy < dims[1]; ++cy)
-      for (int cx = 0; cx < dims[0]; ++cx) {
-        const std::size_t c = (static_cast<std::size_t>(cz) * dims[1] + cy) * dims[0] + cx;
-        for (int s = 0; s < 14; ++s) {
-          const int nx = cx + stencil[s][0], ny = cy + stencil[s][1], nz = cz + stencil[s][2];
-          if (nx < 0 || ny < 0 || nz < 0 || nx >= dims[0] || ny >= dims[1] || nz >= dims[2]) continue;
-          const std::size_t c2 = (static_cast<std::size_t>(nz) * dims[1] + ny) * dims[0] + nx;
-          for (auto a = cell_start[c]; a < cell_start[c + 1]; ++a) {
-            const std::size_t i = order[a];
-            const auto b0 = s == 0 ? a + 1 : cell_start[c2];
-            for (auto b = b0; b < cell_start[c2 + 1]; ++b) {
-              const std::size_t j = order[b];
-              if constexpr (decltype(exclude_same_body)::value)
-                if (p.body[i] >= 0 && p.body[i] == p.body[j]) continue;
-              const double cut = p.radius[i] + p.radius[j] + skin_;
-              if ((p.x[i] - p.x[j]).squaredNorm() < cut * cut) {
-                const bool i_first = p.id[i] < p.id[j];
-                pi.push_back(static_cast<std::uint32_t>(i_first ? i : j));
-                pj.push_back(static_cast<std::uint32_t>(i_first ? j : i));
+  // Likewise ghost-ghost pairs are left out only when ghosts exist.
+  auto collect = [&](auto exclude_same_body, auto with_ghosts) {
+    for (int cz = 0; cz < dims[2]; ++cz)
+      for (int cy = 0; cy < dims[1]; ++cy)
+        for (int cx = 0; cx < dims[0]; ++cx) {
+          const std::size_t c = (static_cast<std::size_t>(cz) * dims[1] + cy) * dims[0] + cx;
+          for (int s = 0; s < 14; ++s) {
+            const int nx = cx + stencil[s][0], ny = cy + stencil[s][1], nz = cz + stencil[s][2];
+            if (nx < 0 || ny < 0 || nz < 0 || nx >= dims[0] || ny >= dims[1] || nz >= dims[2]) continue;
+            const std::size_t c2 = (static_cast<std::size_t>(nz) * dims[1] + ny) * dims[0] + nx;
+            for (auto a = cell_start[c]; a < cell_start[c + 1]; ++a) {
+              const std::size_t i = order[a];
+              const auto b0 = s == 0 ? a + 1 : cell_start[c2];
+              for (auto b = b0; b < cell_start[c2 + 1]; ++b) {
+                const std::size_t j = order[b];
+                if constexpr (decltype(with_ghosts)::value)
+                  if ((i >= n_own && j >= n_own) || p.id[i] == p.id[j]) continue;
+                if constexpr (decltype(exclude_same_body)::value)
+                  if (p.body[i] >= 0 && p.body[i] == p.body[j]) continue;
+                const double cut = p.radius[i] + p.radius[j] + skin_;
+                if ((p.x[i] - p.x[j]).squaredNorm() < cut * cut) {
+                  const bool i_first = p.id[i] < p.id[j];
+                  pi.push_back(static_cast<std::uint32_t>(i_first ? i : j));
+                  pj.push_back(static_cast<std::uint32_t>(i_first ? j : i));
+                }
               }
             }
           }
         }
-      }
   };
-  if (p.fields().has(Field::Body))
-    collect(std::true_type{});
+  const bool bodies = p.fields().has(Field::Body), ghosts = n > n_own;
+  if (bodies && ghosts)
+    collect(std::true_type{}, std::true_type{});
+  else if (bodies)
+    collect(std::true_type{}, std::false_type{});
+  else if (ghosts)
+    collect(std::false_type{}, std::true_type{});
   else
-    collect(std::false_type{});
+    collect(std::false_type{}, std::false_type{});
   // Counting sort of the pairs into rows.
   row_start.assign(n + 1, 0);
   for (auto i : pi) ++row_start[i + 1];
@@ -130,14 +158,15 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
 
   compute_pair_constants(p);
   history.assign(partner.size() * static_cast<std::size_t>(history_size_), 0.0);
-  if (history_size_ > 0) carry_history(p);
+  if (history_size_ > 0) carry_history(p, old_row_start, old_partner, old_history);
+  if (with_gather_) build_gather(p);
 
-  // Wall near lists.
+  // Wall near lists (owned particles only: walls act on what a rank integrates).
   plane_near.assign(walls.planes.size(), {});
   cylinder_near.assign(walls.cylinders.size(), {});
   for (std::size_t w = 0; w < walls.planes.size(); ++w) {
     const auto& wall = walls.planes[w];
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t i = 0; i < n_own; ++i)
       if (contact::plane_distance(p.x[i], wall.point, wall.normal) < p.radius[i] + skin_)
         plane_near[w].push_back(static_cast<std::uint32_t>(i));
   }
@@ -147,13 +176,13 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
     s.t_max += skin_;
     s.radius += s.inside ? -skin_ : skin_;
     contact::ContactGeometry g;
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t i = 0; i < n_own; ++i)
       if (contact::sphere_cylinder(p.x[i], p.radius[i], s, g)) cylinder_near[w].push_back(static_cast<std::uint32_t>(i));
   }
 
-  x_build_.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(n));
+  x_build_.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(n_own));
   build_time_ = time;
-  if (history_size_ > 0) old_row_id_.assign(p.id.begin(), p.id.begin() + static_cast<std::ptrdiff_t>(n));
+  build_id_.assign(p.id.begin(), p.id.begin() + static_cast<std::ptrdiff_t>(n));
   ++stats_.builds;
   stats_.pairs = partner.size();
 }
@@ -174,33 +203,90 @@ void NeighborList::compute_pair_constants(const ParticleStore& p) {
 void NeighborList::restore(const ParticleStore& p, BuildState b) {
   build_time_ = b.time;
   x_build_ = std::move(b.x);
-  old_row_id_ = std::move(b.row_id);
+  build_id_ = std::move(b.row_id);
   stats_.builds = b.builds;
   stats_.pairs = partner.size();
   compute_pair_constants(p);
+  if (with_gather_) build_gather(p);
 }
 
-void NeighborList::carry_history(const ParticleStore& p) {
-  if (old_row_id_.empty()) return;
-  const std::size_t n = p.n_owned();
-  std::int64_t max_id = 0;
-  for (auto id : old_row_id_) max_id = std::max(max_id, id);
-  row_of_id_.assign(static_cast<std::size_t>(max_id) + 1, -1);
-  for (std::size_t r = 0; r < old_row_id_.size(); ++r) row_of_id_[old_row_id_[r]] = static_cast<std::int32_t>(r);
+void NeighborList::import_history(std::int64_t a, std::int64_t b, const double* h) {
+  imported_ids_.push_back(a);
+  imported_ids_.push_back(b);
+  imported_history_.insert(imported_history_.end(), h, h + history_size_);
+}
+
+void NeighborList::carry_history(const ParticleStore& p, const std::vector<std::uint32_t>& old_row_start,
+                                 const std::vector<std::uint32_t>& old_partner,
+                                 const std::vector<double>& old_history) {
   const std::size_t H = static_cast<std::size_t>(history_size_);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto id = p.id[i];
-    if (id > max_id || row_of_id_[id] < 0) continue;
-    const auto r = static_cast<std::size_t>(row_of_id_[id]);
+  // Every non-zero history of the previous build (and those that came with
+  // migrating particles), keyed by the pair's global ids.
+  struct Key {
+    std::int64_t a, b;
+    const double* h;
+  };
+  std::vector<Key> keys;
+  if (!build_id_.empty() && !old_row_start.empty())
+    for (std::size_t r = 0; r + 1 < old_row_start.size(); ++r)
+      for (auto k = old_row_start[r]; k < old_row_start[r + 1]; ++k) {
+        const double* h = old_history.data() + k * H;
+        bool any = false;
+        for (std::size_t c = 0; c < H; ++c) any = any || h[c] != 0.0;
+        if (any) keys.push_back({build_id_[r], build_id_[old_partner[k]], h});
+      }
+  for (std::size_t m = 0; 2 * m < imported_ids_.size(); ++m)
+    keys.push_back({imported_ids_[2 * m], imported_ids_[2 * m + 1], imported_history_.data() + m * H});
+  if (!keys.empty()) {
+    auto less = [](const Key& x, const Key& y) { return x.a < y.a || (x.a == y.a && x.b < y.b); };
+    std::stable_sort(keys.begin(), keys.end(), less);
+    const std::size_t rows = row_start.size() - 1;
+    for (std::size_t i = 0; i < rows; ++i)
+      for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
+        const Key q{p.id[i], p.id[partner[k]], nullptr};
+        const auto it = std::lower_bound(keys.begin(), keys.end(), q, less);
+        if (it != keys.end() && it->a == q.a && it->b == q.b)
+          std::copy_n(it->h, H, history.begin() + static_cast<std::ptrdiff_t>(k * H));
+      }
+  }
+  imported_ids_.clear();
+  imported_history_.clear();
+}
+
+void NeighborList::build_gather(const ParticleStore& p) {
+  const std::size_t n = p.n_owned();
+  const std::size_t rows = row_start.empty() ? 0 : row_start.size() - 1;
+  gather_start.assign(n + 1, 0);
+  for (std::size_t i = 0; i < rows; ++i)
     for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
-      const auto pid = p.id[partner[k]];
-      for (auto ko = old_row_start_[r]; ko < old_row_start_[r + 1]; ++ko)
-        if (old_partner_id_[ko] == pid) {
-          std::copy_n(old_history_.begin() + static_cast<std::ptrdiff_t>(ko * H), H,
-                      history.begin() + static_cast<std::ptrdiff_t>(k * H));
-          break;
-        }
+      if (i < n) ++gather_start[i + 1];
+      if (partner[k] < n) ++gather_start[partner[k] + 1];
     }
+  std::partial_sum(gather_start.begin(), gather_start.end(), gather_start.begin());
+  gather_entry.resize(gather_start.back());
+  std::vector<std::uint32_t> fill(gather_start.begin(), gather_start.end() - 1);
+  for (std::size_t i = 0; i < rows; ++i)
+    for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
+      if (i < n) gather_entry[fill[i]++] = 2 * k;
+      if (partner[k] < n) gather_entry[fill[partner[k]]++] = 2 * k + 1;
+    }
+  // Order each particle's entries by the other particle's global id.
+  auto other = [&](std::uint32_t e) {
+    const std::uint32_t k = e >> 1;
+    if (e & 1u) {
+      // i is the partner: the other is the row; find it by bisection of row_start.
+      const auto r = static_cast<std::size_t>(std::upper_bound(row_start.begin(), row_start.end(), k) -
+                                              row_start.begin()) - 1;
+      return p.id[r];
+    }
+    return p.id[partner[k]];
+  };
+  std::vector<std::pair<std::int64_t, std::uint32_t>> tmp;
+  for (std::size_t i = 0; i < n; ++i) {
+    tmp.clear();
+    for (auto g = gather_start[i]; g < gather_start[i + 1]; ++g) tmp.emplace_back(other(gather_entry[g]), gather_entry[g]);
+    std::sort(tmp.begin(), tmp.end());
+    for (std::size_t m = 0; m < tmp.size(); ++m) gather_entry[gather_start[i] + m] = tmp[m].second;
   }
 }
 

@@ -36,9 +36,38 @@ class NeighborList {
   bool needs_rebuild(const ParticleStore& p, const Walls& walls, double time) const;
 
   /// Rebuilds rows, re-sorts particles by cell for locality (when sort is
-  /// true) and carries the contact history over. lo/hi bound the grid;
-  /// particles outside must have been removed before.
+  /// true; only without ghosts) and carries the contact history over. lo/hi
+  /// bound the grid. With ghosts present, rows cover owned and ghost
+  /// particles (a pair lives in the row of its smaller global id, whichever
+  /// side is the ghost); ghost-ghost pairs are left out.
   void build(ParticleStore& p, const Walls& walls, const Vec3& lo, const Vec3& hi, double time, bool sort);
+  /// Re-sorts the owned particles by cell (before ghosts are built).
+  void sort_by_cell(ParticleStore& p, const Vec3& lo, const Vec3& hi) const;
+
+  /// Calls fn(id_a, id_b, history) for every entry of the last build whose
+  /// history is not all zero (id_a < id_b: the pair's ids).
+  template <class Fn>
+  void for_each_history(Fn&& fn) const {
+    const std::size_t H = static_cast<std::size_t>(history_size_);
+    if (H == 0 || build_id_.empty()) return;
+    for (std::size_t r = 0; r + 1 < row_start.size(); ++r)
+      for (auto k = row_start[r]; k < row_start[r + 1]; ++k) {
+        const double* h = history.data() + k * H;
+        bool any = false;
+        for (std::size_t c = 0; c < H; ++c) any = any || h[c] != 0.0;
+        if (any) fn(build_id_[r], build_id_[partner[k]], h);
+      }
+  }
+  /// History of a pair from elsewhere (a migrating particle's contacts),
+  /// used by the next build when the pair is in the list.
+  void import_history(std::int64_t id_a, std::int64_t id_b, const double* h);
+  /// Entries of the last build in which each particle takes part, for the
+  /// ordered force sum (Scene::deterministic): for particle i, gather
+  /// entries [gather_start[i], gather_start[i+1]) of gather_entry, each
+  /// 2 k + (1 if i is the partner of entry k, 0 if its row), sorted by the
+  /// other particle's global id. Built by build() when `with_gather` is set.
+  void set_gather(bool on) { with_gather_ = on; }
+  std::vector<std::uint32_t> gather_start, gather_entry;
 
   // Rows over owned particles: entries [row_start[i], row_start[i+1]).
   std::vector<std::uint32_t> row_start;
@@ -68,23 +97,27 @@ class NeighborList {
     std::vector<std::int64_t> row_id;
     long builds = 0;
   };
-  BuildState build_state() const { return {build_time_, x_build_, old_row_id_, stats_.builds}; }
+  BuildState build_state() const { return {build_time_, x_build_, build_id_, stats_.builds}; }
   /// Restores a saved list: the public rows, history and near lists must be
   /// assigned already; pair_constants are recomputed from the particles.
   void restore(const ParticleStore& p, BuildState b);
 
  private:
-  void carry_history(const ParticleStore& p);
+  void carry_history(const ParticleStore& p, const std::vector<std::uint32_t>& old_row_start,
+                     const std::vector<std::uint32_t>& old_partner, const std::vector<double>& old_history);
   void compute_pair_constants(const ParticleStore& p);
+  void build_gather(const ParticleStore& p);
   int history_size_ = 0;
   double skin_ = 0;
   double build_time_ = 0;
+  bool with_gather_ = false;
   std::vector<Vec3> x_build_;
-  // Previous build, keyed by global ids, for carrying history over.
-  std::vector<std::int64_t> old_row_id_, old_partner_id_;
-  std::vector<std::uint32_t> old_row_start_;
-  std::vector<double> old_history_;
-  std::vector<std::int32_t> row_of_id_;
+  // Global ids of all particles (owned and ghosts) at the last build: the
+  // keys that carry history to the next build.
+  std::vector<std::int64_t> build_id_;
+  // Histories received with migrating particles: (id_a, id_b) and H doubles each.
+  std::vector<std::int64_t> imported_ids_;
+  std::vector<double> imported_history_;
   Stats stats_;
 };
 

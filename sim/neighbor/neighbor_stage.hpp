@@ -1,6 +1,8 @@
 #pragma once
 // Keeps the neighbour lists valid: checks the displacement trigger each step
-// and, when it fires, removes particles that left the domain and rebuilds.
+// (over all ranks) and, when it fires, removes particles that left the
+// domain, migrates particles between ranks, builds ghosts and rebuilds;
+// otherwise it only refreshes the ghosts.
 #include "sim/scene/stage.hpp"
 
 namespace grains::sim {
@@ -11,6 +13,9 @@ class NeighborStage final : public Stage {
   std::string name() const override { return "neighbor.verlet_list(skin trigger)"; }
   Phase phase() const override { return Phase::Neighbor; }
   void run(Scene& s) override;
+  /// Lost particles out, migration, ghosts and lists, whatever the trigger
+  /// says (also used at start and after a restart).
+  static void full_update(Scene& s, bool sort);
 
  private:
   bool sort_;

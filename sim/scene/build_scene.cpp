@@ -1,6 +1,11 @@
 #include "sim/scene/build_scene.hpp"
 
+#include <omp.h>
+
+#include "sim/parallel/exchange.hpp"
+
 #include <cmath>
+#include <cstdlib>
 #include <random>
 #include <sstream>
 
@@ -176,7 +181,35 @@ Scene build_scene(SceneConfig& c) {
   for (const auto r : s.particles.radius) rmax = std::max(rmax, r);
   // Ellipsoid scenes keep the PW85 lambda of each pair after the law's history.
   s.neighbors.configure(need.history_size + (need.ellipsoids ? 1 : 0), c.skin * 2 * rmax);
+  setup_parallel(s, c, rmax);
   return s;
+}
+
+void setup_parallel(Scene& s, const SceneConfig& c, double rmax) {
+  // Threads: ordered, race-free force sums whenever more than one thread
+  // runs (or when asked), so results never depend on the thread count.
+  // One thread unless OMP_NUM_THREADS asks for more (OpenMP would take every core).
+  if (!std::getenv("OMP_NUM_THREADS")) omp_set_num_threads(1);
+  s.deterministic = c.parallel.deterministic || omp_get_max_threads() > 1;
+  s.neighbors.set_gather(s.deterministic);
+  const Comm& comm = Comm::world();
+  if (!comm.parallel() && !s.domain.any_periodic()) return;
+  // Ghost cut-off: the largest pair cut-off, plus how far a clump's ball may
+  // lie from the centre of mass that decides its rank.
+  double extent = 0;
+  if (s.particles.fields().has(Field::Body))
+    for (std::size_t i = 0; i < s.particles.n_owned(); ++i)
+      if (s.particles.body[i] >= 0) extent = std::max(extent, s.particles.body_offset[i].norm());
+  const double cut = 2 * rmax + s.neighbors.skin() + extent;
+  ExchangeOptions opt;
+  opt.dims = c.parallel.dims;
+  opt.balance_threshold = c.parallel.balance_threshold;
+  try {
+    s.exchange = std::make_shared<Exchange>(comm, s.domain, cut, opt);
+  } catch (const std::runtime_error& e) {
+    throw SetupError(c.parallel.where.empty() ? std::string(e.what()) : c.parallel.where + ": " + e.what());
+  }
+  s.exchange->distribute_initial(s);
 }
 
 }  // namespace grains::sim

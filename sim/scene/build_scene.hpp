@@ -31,6 +31,11 @@ double rayleigh_time(const SceneConfig& c);
 /// Warnings (e.g. dt above 0.3 Rayleigh times) are appended to c.warnings.
 Scene build_scene(SceneConfig& c);
 
+/// Threads and ranks: the deterministic force sum when threads run, and under
+/// MPI (or with periodic dimensions) the exchange, after which this rank
+/// holds only the particles it owns. Called by build_scene.
+void setup_parallel(Scene& s, const SceneConfig& c, double rmax);
+
 /// The physics stages the scene calls for, in phase order. Outputs are added
 /// by the caller (io).
 Pipeline assemble_pipeline(const Scene& s, const SceneConfig& c);

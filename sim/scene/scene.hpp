@@ -1,6 +1,8 @@
 #pragma once
 // The state of a run: particles, walls, materials, neighbour lists, clock.
 #include <array>
+#include <cmath>
+#include <memory>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -13,11 +15,31 @@
 
 namespace grains::sim {
 
+class Exchange;
+
 struct Domain {
   Vec3 lo{0, 0, 0};
   Vec3 hi{1, 1, 1};
+  /// Periodic dimensions: a particle leaving through one face comes back
+  /// through the opposite one (ghost images, sim/parallel/exchange.hpp).
+  std::array<bool, 3> periodic{false, false, false};
+  bool any_periodic() const { return periodic[0] || periodic[1] || periodic[2]; }
+  /// Inside in every non-periodic dimension.
   bool contains(const Vec3& x) const {
-    return (x.array() >= lo.array()).all() && (x.array() <= hi.array()).all();
+    for (int d = 0; d < 3; ++d)
+      if (!periodic[d] && !(x[d] >= lo[d] && x[d] <= hi[d])) return false;
+    return true;
+  }
+  /// Brings x into [lo, hi) along the periodic dimensions; returns the shift applied.
+  Vec3 wrap(Vec3& x) const {
+    Vec3 s = Vec3::Zero();
+    for (int d = 0; d < 3; ++d) {
+      if (!periodic[d]) continue;
+      const double L = hi[d] - lo[d];
+      if (x[d] < lo[d] || x[d] >= hi[d]) s[d] = -L * std::floor((x[d] - lo[d]) / L);
+    }
+    x += s;
+    return s;
   }
 };
 
@@ -40,6 +62,13 @@ struct Scene {
   Vec3 gravity{0, 0, 0};
   Clock clock;
   std::int64_t lost_particles = 0;  // left the domain and were removed
+  /// Ghost exchange, migration and balance: present under MPI with more than
+  /// one rank or with periodic dimensions; null in a plain serial scene.
+  std::shared_ptr<Exchange> exchange;
+  /// Forces summed per particle in a fixed order (by partner global id), so
+  /// results do not depend on the thread or rank count. On whenever OpenMP
+  /// runs more than one thread (race-free accumulation), or when asked.
+  bool deterministic = false;
 };
 
 }  // namespace grains::sim

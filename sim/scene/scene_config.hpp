@@ -84,6 +84,14 @@ struct ParticleSetConfig {
 
 enum class SlotChoice { Auto, None, On };
 
+/// Threads and MPI ranks (`parallel:` in the case file).
+struct ParallelConfig {
+  bool deterministic = false;        // ordered force sums even with one thread
+  std::array<int, 3> dims{0, 0, 0};  // rank grid; 0 = chosen from the domain shape
+  double balance_threshold = 1.2;    // rebalance when max/mean owned particles exceeds it
+  std::string where;                 // case-file location, for messages
+};
+
 struct SceneConfig {
   Domain domain;
   Vec3 gravity{0, 0, 0};
@@ -98,6 +106,7 @@ struct SceneConfig {
   double end_time = 0;
   double skin = 0.1;       // neighbour skin as a fraction of the largest diameter
   bool sort_particles = true;
+  ParallelConfig parallel;
   double overlap_tolerance = 0.01;  // initial overlaps above this fraction of the smaller radius are refused
   std::vector<std::string> warnings;  // filled by build_scene
 };

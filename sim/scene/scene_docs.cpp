@@ -25,11 +25,16 @@ std::vector<EffectDoc> scene_docs() {
                 key("walls", K::List, "walls (see walls.plane, walls.cylinder)"),
                 key("time", K::Map, "time stepping (see time)").req(),
                 key("neighbor", K::Map, "neighbour lists (see neighbor)"),
+                key("parallel", K::Map, "threads and MPI ranks (see parallel)"),
                 key("output", K::Map, "output (see output)"),
                 key("checkpoint", K::Map, "HDF5 checkpoints for restart (see checkpoint)")}});
   d.push_back({"domain", "domain: {...}",
-               "The box particles live in; a particle that leaves it is removed and counted in the summary.",
-               {key("min", K::Vec3, "lower corner").req().si("m"), key("max", K::Vec3, "upper corner").req().si("m")}});
+               "The box particles live in; a particle that leaves it through a non-periodic face is removed and "
+               "counted in the summary. Through a periodic face it comes back at the opposite one, and contacts "
+               "act across periodic faces (ghost images; the box must be at least twice the largest diameter "
+               "plus skin along a periodic axis).",
+               {key("min", K::Vec3, "lower corner").req().si("m"), key("max", K::Vec3, "upper corner").req().si("m"),
+                key("periodic", K::Bool3, "periodic axes: true/false for all, or [x, y, z]").def("false")}});
   d.push_back({"force.gravity", "gravity: [gx, gy, gz]", "Uniform gravity, F = m g, applied where forces are cleared each step; absent or zero costs nothing.",
                {key("gravity", K::Vec3, "acceleration").si("m/s^2")}});
   d.push_back({"particles", "particles: [ {...}, ... ]", "A set of particles: spheres, ellipsoids or rigid clumps (see particles.shape).",
@@ -103,6 +108,17 @@ std::vector<EffectDoc> scene_docs() {
                 key("overlap_tolerance", K::Number,
                     "initial overlaps above this fraction of the smaller radius are refused")
                     .def("0.01").in(0, 1)}});
+  d.push_back({"parallel", "parallel: {...}",
+               "Threads and MPI ranks. Threads: set OMP_NUM_THREADS (default 1); with more than one thread force "
+               "sums are ordered per particle by the partner's global id, so results do not depend on the thread "
+               "count. Ranks: run under mpirun -np N; the domain is split on a grid of ranks whose cut planes "
+               "follow the particles (quantiles), rebalanced when the load is uneven.",
+               {key("deterministic", K::Bool,
+                    "ordered force sums with one thread too: results bitwise identical for any thread and rank "
+                    "count (non-periodic scenes)").def("false"),
+                key("decomposition", K::Vec3, "rank grid [nx, ny, nz] (product = number of ranks)").def("chosen"),
+                key("balance_threshold", K::Number, "rebalance when max/mean particles per rank exceeds this")
+                    .def("1.2").in(1, 100)}});
   return d;
 }
 

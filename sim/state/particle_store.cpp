@@ -1,5 +1,6 @@
 #include "sim/state/particle_store.hpp"
 
+#include <cstring>
 #include <stdexcept>
 
 namespace grains::sim {
@@ -106,6 +107,83 @@ void ParticleStore::permute(const std::vector<std::size_t>& order) {
     vec.swap(out);
   });
   n_owned_ = order.size();
+}
+
+std::size_t ParticleStore::record_bytes() {
+  std::size_t b = 0;
+  for_each_field([&b](auto& vec, int w) { b += sizeof(vec[0]) * static_cast<std::size_t>(w); });
+  return b;
+}
+
+void ParticleStore::pack(std::size_t i, std::vector<char>& buf) {
+  for_each_field([&](auto& vec, int w) {
+    const std::size_t bytes = sizeof(vec[0]) * static_cast<std::size_t>(w);
+    const auto* src = reinterpret_cast<const char*>(vec.data() + i * static_cast<std::size_t>(w));
+    buf.insert(buf.end(), src, src + bytes);
+  });
+}
+
+void ParticleStore::unpack_owned(const char* rec) {
+  if (n_ghost() != 0) throw std::logic_error("ParticleStore::unpack_owned with ghosts present");
+  for_each_field([&](auto& vec, int w) {
+    const std::size_t bytes = sizeof(vec[0]) * static_cast<std::size_t>(w);
+    vec.resize(vec.size() + static_cast<std::size_t>(w));
+    std::memcpy(reinterpret_cast<char*>(vec.data() + vec.size() - static_cast<std::size_t>(w)), rec, bytes);
+    rec += bytes;
+  });
+  ++n_owned_;
+}
+
+void ParticleStore::unpack_ghost(const char* rec, const Vec3& shift) {
+  const std::size_t k = size();
+  for_each_field([&](auto& vec, int w) {
+    const std::size_t bytes = sizeof(vec[0]) * static_cast<std::size_t>(w);
+    vec.resize(vec.size() + static_cast<std::size_t>(w));
+    std::memcpy(reinterpret_cast<char*>(vec.data() + vec.size() - static_cast<std::size_t>(w)), rec, bytes);
+    rec += bytes;
+  });
+  x[k] += shift;
+  f[k].setZero();
+  if (fields_.has(Field::Torque)) torque[k].setZero();
+}
+
+std::size_t ParticleStore::kinematic_bytes() const {
+  std::size_t b = 2 * sizeof(Vec3);
+  if (fields_.has(Field::AngularVelocity)) b += sizeof(Vec3);
+  if (fields_.has(Field::Orientation)) b += sizeof(Quat);
+  if (fields_.has(Field::ShapeForm)) b += sizeof(std::array<double, 6>);
+  return b;
+}
+
+namespace {
+template <class T>
+void put(std::vector<char>& buf, const T& v) {
+  const auto* c = reinterpret_cast<const char*>(&v);
+  buf.insert(buf.end(), c, c + sizeof(T));
+}
+template <class T>
+const char* get(const char* rec, T& v) {
+  std::memcpy(reinterpret_cast<char*>(&v), rec, sizeof(T));
+  return rec + sizeof(T);
+}
+}  // namespace
+
+void ParticleStore::pack_kinematics(std::size_t i, const Vec3& shift, std::vector<char>& buf) const {
+  put(buf, Vec3(x[i] + shift));
+  put(buf, v[i]);
+  if (fields_.has(Field::AngularVelocity)) put(buf, omega[i]);
+  if (fields_.has(Field::Orientation)) put(buf, orientation[i]);
+  if (fields_.has(Field::ShapeForm)) put(buf, form[i]);
+}
+
+std::size_t ParticleStore::unpack_kinematics(std::size_t i, const char* rec) {
+  const char* r = rec;
+  r = get(r, x[i]);
+  r = get(r, v[i]);
+  if (fields_.has(Field::AngularVelocity)) r = get(r, omega[i]);
+  if (fields_.has(Field::Orientation)) r = get(r, orientation[i]);
+  if (fields_.has(Field::ShapeForm)) r = get(r, form[i]);
+  return static_cast<std::size_t>(r - rec);
 }
 
 }  // namespace grains::sim

@@ -84,6 +84,23 @@ class ParticleStore {
   /// Reorder owned particles: new index k takes old index order[k].
   void permute(const std::vector<std::size_t>& order);
 
+  // ---- byte records (MPI migration and ghosts) ----
+  /// Bytes of one particle's record holding every allocated field.
+  std::size_t record_bytes();
+  /// Appends the full record of particle i to buf.
+  void pack(std::size_t i, std::vector<char>& buf);
+  /// Appends an owned particle from a record (no ghosts may be present).
+  void unpack_owned(const char* rec);
+  /// Appends a ghost from a record, its position shifted by `shift`.
+  void unpack_ghost(const char* rec, const Vec3& shift);
+  /// The fields that change every step (position, velocity and, when they
+  /// exist, angular velocity, orientation and shape form): what a ghost
+  /// update sends.
+  std::size_t kinematic_bytes() const;
+  void pack_kinematics(std::size_t i, const Vec3& shift, std::vector<char>& buf) const;
+  /// Overwrites the kinematic fields of particle i from a record; returns the bytes read.
+  std::size_t unpack_kinematics(std::size_t i, const char* rec);
+
   // ---- core fields ----
   std::vector<std::int64_t> id;
   std::vector<Vec3> x, v, f;

@@ -44,7 +44,12 @@ class PlaneWallStage final : public Stage {
     const int WH = p.wall_history_size();
     for (std::size_t w = 0; w < s.walls.planes.size(); ++w) {
       const PlaneWall& wall = s.walls.planes[w];
-      for (const auto i : s.neighbors.plane_near[w]) {
+      // Each particle appears once per wall: rows are independent.
+      const auto& near = s.neighbors.plane_near[w];
+      const auto nn = static_cast<std::ptrdiff_t>(near.size());
+#pragma omp parallel for schedule(static) if (s.deterministic)
+      for (std::ptrdiff_t m = 0; m < nn; ++m) {
+        const std::size_t i = near[static_cast<std::size_t>(m)];
         double* hist = H > 0 ? p.wall_history.data() + static_cast<std::size_t>(i) * WH + wall.history_slot * H : nullptr;
         contact::ContactGeometry g;
         bool touching;
@@ -81,7 +86,12 @@ class CylinderWallStage final : public Stage {
     const int WH = p.wall_history_size();
     for (std::size_t w = 0; w < s.walls.cylinders.size(); ++w) {
       const CylinderWall& wall = s.walls.cylinders[w];
-      for (const auto i : s.neighbors.cylinder_near[w]) {
+      // Each particle appears once per wall: rows are independent.
+      const auto& near = s.neighbors.cylinder_near[w];
+      const auto nn = static_cast<std::ptrdiff_t>(near.size());
+#pragma omp parallel for schedule(static) if (s.deterministic)
+      for (std::ptrdiff_t m = 0; m < nn; ++m) {
+        const std::size_t i = near[static_cast<std::size_t>(m)];
         double* hist = H > 0 ? p.wall_history.data() + static_cast<std::size_t>(i) * WH + wall.history_slot * H : nullptr;
         contact::ContactGeometry g;
         bool touching;

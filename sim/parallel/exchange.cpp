@@ -1,0 +1,227 @@
+#include "sim/parallel/exchange.hpp"
+
+#include <cstring>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace grains::sim {
+
+namespace {
+
+template <class T>
+void put(std::vector<char>& b, const T& v) {
+  const auto* c = reinterpret_cast<const char*>(&v);
+  b.insert(b.end(), c, c + sizeof(T));
+}
+template <class T>
+T take(const char*& r) {
+  T v;
+  std::memcpy(reinterpret_cast<char*>(&v), r, sizeof(T));
+  r += sizeof(T);
+  return v;
+}
+
+void pack_body(BodyStore& b, std::size_t k, std::vector<char>& buf) {
+  b.visit_fields([&](const char*, const char*, auto& vec) { put(buf, vec[k]); });
+}
+
+void unpack_body(BodyStore& b, const char*& r) {
+  b.visit_fields([&](const char*, const char*, auto& vec) {
+    using T = typename std::decay_t<decltype(vec)>::value_type;
+    vec.push_back(take<T>(r));
+  });
+}
+
+}  // namespace
+
+Exchange::Exchange(const Comm& comm, const Domain& domain, double cutoff, ExchangeOptions opt)
+    : comm_(comm), domain_(domain), dec_(domain, comm.size(), cutoff, opt.dims), cut_(cutoff), opt_(opt) {
+  for (int d = 0; d < 3; ++d)
+    if (domain.periodic[d] && domain.hi[d] - domain.lo[d] < 2 * cutoff)
+      throw std::runtime_error(std::string("the periodic box is too small along ") + "xyz"[d] + ": " +
+                               std::to_string(domain.hi[d] - domain.lo[d]) +
+                               " m, it must be at least twice the ghost cut-off " + std::to_string(cutoff) +
+                               " m (largest diameter + skin) so that a pair meets only one image");
+}
+
+void Exchange::wrap(Scene& s) {
+  if (!domain_.any_periodic()) return;
+  auto& p = s.particles;
+  auto& b = s.bodies;
+  std::vector<Vec3> body_shift(b.size(), Vec3::Zero());
+  for (std::size_t k = 0; k < b.size(); ++k) body_shift[k] = domain_.wrap(b.x[k]);
+  const bool clumps = p.fields().has(Field::Body);
+  for (std::size_t i = 0; i < p.n_owned(); ++i) {
+    if (clumps && p.body[i] >= 0)
+      p.x[i] += body_shift[static_cast<std::size_t>(b.index_of(p.body[i]))];
+    else
+      domain_.wrap(p.x[i]);
+  }
+}
+
+void Exchange::distribute_initial(Scene& s) {
+  auto& p = s.particles;
+  auto& b = s.bodies;
+  wrap(s);
+  if (!comm_.parallel()) return;
+  // Every rank holds all particles: balance on them without summing over ranks.
+  Comm one;  // a one-rank view for the histogram
+  dec_.balance(p.x, p.n_owned(), one);
+  const int me = comm_.rank();
+  std::vector<char> gone_body(b.size(), 0);
+  for (std::size_t k = 0; k < b.size(); ++k) gone_body[k] = dec_.owner(b.x[k]) != me;
+  const bool clumps = p.fields().has(Field::Body);
+  std::vector<char> gone(p.n_owned(), 0);
+  for (std::size_t i = 0; i < p.n_owned(); ++i)
+    gone[i] = clumps && p.body[i] >= 0 ? gone_body[static_cast<std::size_t>(b.index_of(p.body[i]))]
+                                       : dec_.owner(p.x[i]) != me;
+  p.remove_if(gone);
+  b.remove_if(gone_body);
+  stats_.imbalance = Decomposition::imbalance(p.n_owned(), comm_);
+}
+
+void Exchange::migrate(Scene& s) {
+  auto& p = s.particles;
+  auto& b = s.bodies;
+  ++stats_.full_updates;
+  wrap(s);
+  if (!comm_.parallel()) return;
+  stats_.imbalance = Decomposition::imbalance(p.n_owned(), comm_);
+  if (stats_.imbalance > opt_.balance_threshold && dec_.balance(p.x, p.n_owned(), comm_)) ++stats_.rebalances;
+
+  const int me = comm_.rank();
+  const auto P = static_cast<std::size_t>(comm_.size());
+  std::vector<int> bdest(b.size());
+  for (std::size_t k = 0; k < b.size(); ++k) bdest[k] = dec_.owner(b.x[k]);
+  const bool clumps = p.fields().has(Field::Body);
+  const std::size_t n = p.n_owned();
+  std::vector<int> dest(n);
+  std::unordered_map<std::int64_t, int> leaving;  // global id -> destination
+  for (std::size_t i = 0; i < n; ++i) {
+    dest[i] = clumps && p.body[i] >= 0 ? bdest[static_cast<std::size_t>(b.index_of(p.body[i]))] : dec_.owner(p.x[i]);
+    if (dest[i] != me) leaving.emplace(p.id[i], dest[i]);
+  }
+  // Three sections per destination: particles, bodies, pair histories.
+  std::vector<std::vector<char>> pbuf(P), bbuf(P), hbuf(P);
+  std::vector<std::int64_t> np(P, 0), nb(P, 0), nh(P, 0);
+  std::vector<char> gone(n, 0), gone_body(b.size(), 0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (dest[i] != me) {
+      p.pack(i, pbuf[static_cast<std::size_t>(dest[i])]);
+      ++np[static_cast<std::size_t>(dest[i])];
+      gone[i] = 1;
+    }
+  for (std::size_t k = 0; k < b.size(); ++k)
+    if (bdest[k] != me) {
+      pack_body(b, k, bbuf[static_cast<std::size_t>(bdest[k])]);
+      ++nb[static_cast<std::size_t>(bdest[k])];
+      gone_body[k] = 1;
+    }
+  const int H = s.neighbors.history_size();
+  if (H > 0 && !leaving.empty()) {
+    s.neighbors.for_each_history([&](std::int64_t a, std::int64_t c, const double* h) {
+      const auto ia = leaving.find(a), ic = leaving.find(c);
+      int to[2] = {ia == leaving.end() ? -1 : ia->second, ic == leaving.end() ? -1 : ic->second};
+      if (to[1] == to[0]) to[1] = -1;
+      for (int t : to) {
+        if (t < 0) continue;
+        auto& buf = hbuf[static_cast<std::size_t>(t)];
+        put(buf, a);
+        put(buf, c);
+        buf.insert(buf.end(), reinterpret_cast<const char*>(h), reinterpret_cast<const char*>(h + H));
+        ++nh[static_cast<std::size_t>(t)];
+      }
+    });
+  }
+  std::vector<std::vector<char>> send(P);
+  std::int64_t sent = 0;
+  for (std::size_t r = 0; r < P; ++r) {
+    if (static_cast<int>(r) == me) continue;
+    auto& o = send[r];
+    put(o, np[r]);
+    o.insert(o.end(), pbuf[r].begin(), pbuf[r].end());
+    put(o, nb[r]);
+    o.insert(o.end(), bbuf[r].begin(), bbuf[r].end());
+    put(o, nh[r]);
+    o.insert(o.end(), hbuf[r].begin(), hbuf[r].end());
+    sent += np[r];
+  }
+  stats_.migrated += sent;
+  p.remove_if(gone);
+  b.remove_if(gone_body);
+  const auto recv = comm_.alltoallv(send);
+  const std::size_t rec = p.record_bytes();
+  for (std::size_t r = 0; r < P; ++r) {
+    if (static_cast<int>(r) == me || recv[r].empty()) continue;
+    const char* q = recv[r].data();
+    const auto cnt = take<std::int64_t>(q);
+    for (std::int64_t k = 0; k < cnt; ++k, q += rec) p.unpack_owned(q);
+    const auto cb = take<std::int64_t>(q);
+    for (std::int64_t k = 0; k < cb; ++k) unpack_body(b, q);
+    const auto ch = take<std::int64_t>(q);
+    for (std::int64_t k = 0; k < ch; ++k) {
+      const auto a = take<std::int64_t>(q);
+      const auto c = take<std::int64_t>(q);
+      s.neighbors.import_history(a, c, reinterpret_cast<const double*>(q));
+      q += sizeof(double) * static_cast<std::size_t>(H);
+    }
+  }
+  b.rebuild_index();
+}
+
+void Exchange::build_ghosts(ParticleStore& p) {
+  swaps_.clear();
+  const int me = comm_.rank();
+  const Vec3 lo = dec_.lo(me), hi = dec_.hi(me);
+  const std::size_t rec = p.record_bytes();
+  int tag = 100;
+  for (int d = 0; d < 3; ++d) {
+    if (dec_.dims()[d] == 1 && !domain_.periodic[d]) continue;
+    const std::size_t n_sel = p.size();
+    const double L = domain_.hi[d] - domain_.lo[d];
+    for (int dir : {-1, +1}) {
+      Swap sw;
+      bool wd = false, ws = false;
+      sw.dest = dec_.neighbor(me, d, dir, wd);
+      sw.src = dec_.neighbor(me, d, -dir, ws);
+      if (ws) sw.recv_shift[d] = -dir * L;
+      sbuf_.clear();
+      if (sw.dest >= 0)
+        for (std::size_t i = 0; i < n_sel; ++i) {
+          const double xd = p.x[i][d];
+          if (dir < 0 ? xd < lo[d] + cut_ : xd >= hi[d] - cut_) {
+            sw.send.push_back(static_cast<std::uint32_t>(i));
+            p.pack(i, sbuf_);
+          }
+        }
+      comm_.sendrecv(sbuf_, sw.dest, rbuf_, sw.src, tag);
+      tag += 2;
+      sw.recv_start = p.size();
+      sw.recv_count = rbuf_.size() / rec;
+      for (std::size_t k = 0; k < sw.recv_count; ++k) p.unpack_ghost(rbuf_.data() + k * rec, sw.recv_shift);
+      swaps_.push_back(std::move(sw));
+    }
+  }
+  stats_.ghosts = p.n_ghost();
+}
+
+void Exchange::update_ghosts(ParticleStore& p) {
+  const std::size_t kb = p.kinematic_bytes();
+  int tag = 100;
+  for (const auto& sw : swaps_) {
+    sbuf_.clear();
+    for (const auto i : sw.send) p.pack_kinematics(i, Vec3::Zero(), sbuf_);
+    rbuf_.resize(sw.recv_count * kb);
+    comm_.sendrecv_known(sbuf_, sw.dest, rbuf_, sw.src, tag);
+    tag += 2;
+    const char* q = rbuf_.data();
+    const bool shift = sw.recv_shift.squaredNorm() > 0;
+    for (std::size_t k = 0; k < sw.recv_count; ++k) {
+      const std::size_t g = sw.recv_start + k;
+      q += p.unpack_kinematics(g, q);
+      if (shift) p.x[g] += sw.recv_shift;
+    }
+  }
+}
+
+}  // namespace grains::sim

@@ -1,0 +1,85 @@
+#pragma once
+// Ghosts, migration and load balance of the domain decomposition, and the
+// periodic images of a periodic box (which are the one-rank case of the
+// same exchange: a rank is its own neighbour across a periodic face).
+//
+// Full update (at a neighbour-list rebuild, decided for all ranks at once):
+//   wrap periodic positions -> rebalance if the load is uneven -> migrate
+//   owned particles to the rank owning their position (a clump's balls go
+//   with the rank of its centre of mass), with the contact history of every
+//   pair they take part in -> sort by cell -> build ghosts -> build lists.
+// Cheap update (every other step): the ghosts' kinematics are refreshed
+// along the same send lists.
+//
+// Ghosts are built in three stages (x, then y, then z); each stage sends to
+// the two face neighbours the particles (owned, and ghosts received in the
+// earlier stages) within the ghost cut-off of the face, so edge and corner
+// neighbours are reached without diagonal messages. Contacts between an
+// owned particle and a ghost are computed on both ranks (the pair's force
+// lands on each rank's own particle), with identical inputs, so both copies
+// of the pair's history evolve identically and either can move with a
+// migrating particle.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "sim/parallel/comm.hpp"
+#include "sim/parallel/decomposition.hpp"
+#include "sim/scene/scene.hpp"
+
+namespace grains::sim {
+
+struct ExchangeOptions {
+  std::array<int, 3> dims{0, 0, 0};  // requested rank grid (0: choose)
+  double balance_threshold = 1.2;    // rebalance when max/mean owned > this
+};
+
+class Exchange {
+ public:
+  struct Stats {
+    long full_updates = 0, rebalances = 0;
+    std::int64_t migrated = 0;  // particles sent to another rank, summed over updates
+    std::size_t ghosts = 0;     // after the last full update
+    double imbalance = 1;       // max/mean owned particles at the last full update
+  };
+
+  /// `cutoff`: the ghost cut-off (largest pair cut-off 2 r_max + skin, plus
+  /// the largest distance of a clump ball from its centre of mass).
+  Exchange(const Comm& comm, const Domain& domain, double cutoff, ExchangeOptions opt = {});
+
+  const Comm& comm() const { return comm_; }
+  const Decomposition& decomposition() const { return dec_; }
+  double cutoff() const { return cut_; }
+  const Stats& stats() const { return stats_; }
+
+  /// Keeps only the particles and bodies this rank owns (every rank built
+  /// the whole scene identically), after balancing the cuts on them.
+  void distribute_initial(Scene& s);
+  /// Wraps periodic positions, rebalances when needed and migrates owned
+  /// particles and bodies (with contact histories) to their owners. No
+  /// ghosts may be present.
+  void migrate(Scene& s);
+  /// Builds the ghosts and remembers the send lists.
+  void build_ghosts(ParticleStore& p);
+  /// Refreshes the ghosts' kinematics along the send lists.
+  void update_ghosts(ParticleStore& p);
+
+ private:
+  struct Swap {
+    int dest = -1, src = -1;
+    Vec3 recv_shift{0, 0, 0};
+    std::vector<std::uint32_t> send;
+    std::size_t recv_start = 0, recv_count = 0;
+  };
+  void wrap(Scene& s);
+  const Comm& comm_;
+  Domain domain_;
+  Decomposition dec_;
+  double cut_;
+  ExchangeOptions opt_;
+  std::vector<Swap> swaps_;
+  std::vector<char> sbuf_, rbuf_;
+  Stats stats_;
+};
+
+}  // namespace grains::sim
