@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "io/cli/commands.hpp"
 #include "io/output/progress.hpp"
 #include "io/run/simulation.hpp"
+#include "sim/parallel/comm.hpp"
 
 namespace {
 
@@ -88,12 +90,17 @@ bool parse_run_args(const std::vector<std::string>& a, RunArgs& r, bool allow_ou
 int cmd_run(const std::vector<std::string>& a, bool check_only) {
   RunArgs r;
   if (!parse_run_args(a, r, !check_only)) return 2;
+  const auto& comm = grains::sim::Comm::world();
+  // Under MPI only rank 0 talks; set-up errors are the same on every rank.
+  std::ostringstream sink;
+  std::ostream& out = comm.root() ? std::cout : sink;
+  std::ostream& err = comm.root() ? std::cerr : sink;
   try {
     auto sim = grains::io::make_simulation(grains::io::load_case(r.case_path, r.sets));
     if (check_only) {
       grains::io::RunOptions opt;
       grains::io::add_output_stages(sim, opt);
-      std::cout << "case is valid\n" << grains::io::describe(sim);
+      out << "case is valid\n" << grains::io::describe(sim);
       return 0;
     }
     grains::io::RunOptions opt;
@@ -101,15 +108,15 @@ int cmd_run(const std::vector<std::string>& a, bool check_only) {
                                 : std::filesystem::path(r.out);
     if (r.out.empty() && std::filesystem::path(r.case_path).parent_path().filename().empty())
       opt.out_dir = std::filesystem::path("out") / std::filesystem::path(r.case_path).stem();
-    opt.quiet = r.quiet;
+    opt.quiet = r.quiet;  // the same on every rank: stages must match across ranks
     opt.handle_signals = true;
     if (!r.resume.empty()) {
       if (r.out.empty()) opt.out_dir = r.resume;
       std::vector<std::string> skipped;
       opt.restart = grains::io::newest_valid_checkpoint(std::filesystem::path(r.resume) / "checkpoints", &skipped);
-      for (const auto& why : skipped) std::cerr << "grains: skipping " << why << "\n";
+      for (const auto& why : skipped) err << "grains: skipping " << why << "\n";
       if (opt.restart.empty()) {
-        std::cerr << "grains: no valid checkpoint in '" << (std::filesystem::path(r.resume) / "checkpoints").string()
+        err << "grains: no valid checkpoint in '" << (std::filesystem::path(r.resume) / "checkpoints").string()
                   << "' to resume from; run without --resume to start from the beginning\n";
         return 2;
       }
@@ -118,13 +125,13 @@ int cmd_run(const std::vector<std::string>& a, bool check_only) {
     }
     const auto sum = grains::io::run(sim, opt);
     if (sum.signal != 0) {
-      std::cerr << "grains: stopped by " << (sum.signal == SIGINT ? "SIGINT" : sum.signal == SIGTERM ? "SIGTERM" : "a signal")
+      err << "grains: stopped by " << (sum.signal == SIGINT ? "SIGINT" : sum.signal == SIGTERM ? "SIGTERM" : "a signal")
                 << " at step " << sum.steps << " (t = " << sum.simulated_time << " s); checkpoint: " << sum.checkpoint
                 << "\nresume with: grains run " << r.case_path << " --resume " << opt.out_dir.string() << "\n";
       return 128 + sum.signal;
     }
     if (!r.quiet) {
-      std::cout << "steps: " << sum.steps << "  simulated: " << sum.simulated_time << " s  wall: " << sum.wall_seconds
+      out << "steps: " << sum.steps << "  simulated: " << sum.simulated_time << " s  wall: " << sum.wall_seconds
                 << " s  throughput: " << sum.particle_steps_per_second << " particle-steps/s\n"
                 << "particles: " << sum.particles_end << " (lost " << sum.lost_particles << ")  neighbour builds: "
                 << sum.neighbor_builds << "  frames: " << sum.frames << "\n"
@@ -132,19 +139,25 @@ int cmd_run(const std::vector<std::string>& a, bool check_only) {
     }
     return 0;
   } catch (const grains::io::CaseError& e) {
-    std::cerr << e.what() << "\n";
+    err << e.what() << "\n";
     return 2;
   } catch (const grains::sim::SetupError& e) {
-    std::cerr << e.what() << "\n";
+    err << e.what() << "\n";
     return 2;
   } catch (const grains::io::CheckpointError& e) {
-    std::cerr << "grains: " << e.what() << "\n";
+    err << "grains: " << e.what() << "\n";
     return 2;
   } catch (const grains::io::BlowUp& e) {
-    std::cerr << "grains: " << e.what() << "\n";
+    err << "grains: " << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "grains: " << e.what() << "\n";
+    // An error that not every rank saw: say which rank, and stop them all
+    // (the others may be waiting in a collective).
+    if (comm.parallel()) {
+      std::cerr << "grains: rank " << comm.rank() << ": " << e.what() << "\n" << std::flush;
+      comm.abort(1);
+    }
+    err << "grains: " << e.what() << "\n";
     return 1;
   }
 }
@@ -171,6 +184,11 @@ int cmd_docs(const std::vector<std::string>& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // MPI starts only when mpirun launched us; a plain run stays serial.
+  grains::sim::Comm::init(&argc, &argv);
+  struct Finalize {
+    ~Finalize() { grains::sim::Comm::finalize(); }
+  } finalize;
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::cout << kUsage;

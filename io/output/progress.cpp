@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "sim/parallel/comm.hpp"
+
 namespace grains::io {
 
 Progress::Progress(std::ostream& out, double interval) : out_(out), interval_(interval) {}
@@ -16,7 +18,14 @@ void Progress::run(sim::Scene& s) {
     start_step_ = s.clock.step - 1;
   }
   particle_steps_ += static_cast<double>(s.particles.n_owned());
-  if (std::chrono::duration<double>(now - last_).count() >= interval_) {
+  const auto& comm = sim::Comm::world();
+  bool due = std::chrono::duration<double>(now - last_).count() >= interval_;
+  if (comm.parallel()) {
+    // Ranks decide together (every 32 steps), so the counts can be summed.
+    if (s.clock.step % 32 != 0) return;
+    due = comm.any(due);
+  }
+  if (due) {
     last_ = now;
     print(s, false);
   }
@@ -27,6 +36,10 @@ void Progress::finish(sim::Scene& s) {
 }
 
 void Progress::print(const sim::Scene& s, bool final) {
+  const auto& comm = sim::Comm::world();
+  const auto particles = static_cast<std::size_t>(comm.sum(static_cast<std::int64_t>(s.particles.n_owned())));
+  const double psteps = comm.sum(particle_steps_);
+  if (!comm.root()) return;
   const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const auto done = s.clock.step - start_step_;
   const auto left = s.clock.n_steps - s.clock.step;
@@ -35,8 +48,8 @@ void Progress::print(const sim::Scene& s, bool final) {
   std::snprintf(buf, sizeof buf, "%sstep %lld/%lld (%5.1f%%)  t = %.6g s  %s %.0f s  %zu particles  %.3g particle-steps/s",
                 final ? "done: " : "", static_cast<long long>(s.clock.step), static_cast<long long>(s.clock.n_steps),
                 s.clock.n_steps > 0 ? 100.0 * static_cast<double>(s.clock.step) / static_cast<double>(s.clock.n_steps) : 100.0,
-                s.clock.time, final ? "wall" : "ETA", final ? el : eta, s.particles.n_owned(),
-                el > 0 ? particle_steps_ / el : 0.0);
+                s.clock.time, final ? "wall" : "ETA", final ? el : eta, particles,
+                el > 0 ? psteps / el : 0.0);
   out_ << buf << std::endl;
 }
 
@@ -45,6 +58,7 @@ BlowUpCheck::BlowUpCheck(const sim::Scene& s, double rayleigh_time, std::int64_t
   const sim::Vec3 ext = s.domain.hi - s.domain.lo;
   double v0 = 0;
   for (std::size_t i = 0; i < s.particles.n_owned(); ++i) v0 = std::max(v0, s.particles.v[i].norm());
+  v0 = sim::Comm::world().max(v0);
   const double vfall = std::sqrt(2 * s.gravity.norm() * ext.norm());
   vmax_ = 100 * (v0 + vfall + s.walls.max_displacement(1.0)) + 1e-6;
 }
@@ -52,7 +66,7 @@ BlowUpCheck::BlowUpCheck(const sim::Scene& s, double rayleigh_time, std::int64_t
 void BlowUpCheck::run(sim::Scene& s) {
   if (s.clock.step % every_ != 0) return;
   std::string d = diagnose(s);
-  if (d.empty()) return;
+  if (!sim::Comm::world().agree_error(d)) return;  // every rank stops together
   if (!last_good_.empty())
     d += ". The last good checkpoint is " + last_good_ + " (written before the blow-up and kept)";
   throw BlowUp(d);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include <vtkCellArray.h>
@@ -18,6 +19,8 @@
 #include <vtkXMLPolyDataWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
+#include "sim/parallel/comm.hpp"
+
 #include "contact/sphere.hpp"
 #include "sim/laws/ellipsoid_pair_stage.hpp"
 
@@ -31,7 +34,9 @@ std::vector<int> coordination_numbers(const sim::Scene& s) {
   const auto& nl = s.neighbors;
   std::vector<int> z(p.n_owned(), 0);
   const std::size_t rows = nl.row_start.empty() ? 0 : nl.row_start.size() - 1;
-  for (std::size_t i = 0; i < rows && i < p.n_owned(); ++i)
+  // Rows cover ghosts too (under MPI or with periodic images): count each
+  // contact for whichever of its particles this rank owns.
+  for (std::size_t i = 0; i < rows; ++i)
     for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
       const auto j = nl.partner[k];
       const double rs = p.radius[i] + p.radius[j];
@@ -43,7 +48,7 @@ std::vector<int> coordination_numbers(const sim::Scene& s) {
         touching = sim::shape_pair_geometry(p, i, j, lambda, g);
       }
       if (touching) {
-        ++z[i];
+        if (i < z.size()) ++z[i];
         if (j < z.size()) ++z[j];
       }
     }
@@ -64,24 +69,57 @@ void VtkOutput::finish(sim::Scene& s) {
   if (last_step_ != s.clock.step) write_frame(s);
 }
 
+namespace {
+std::string piece_name(const std::string& stem, int rank);
+void write_pvtu(const fs::path& file, const std::string& layout, const std::string& stem, int pieces);
+}  // namespace
+
 void VtkOutput::write_frame(const sim::Scene& s) {
-  if (times_.empty()) {
-    std::error_code ec;
-    fs::create_directories(dir_ / "frames", ec);
-    if (ec) throw std::runtime_error("cannot create output folder '" + (dir_ / "frames").string() + "': " + ec.message());
+  // Under MPI every rank writes its piece of the frame and rank 0 the .pvtu
+  // index, the walls and the .pvd series. A failure on any rank stops all
+  // ranks with the same message (no rank is left waiting).
+  const auto& comm = sim::Comm::world();
+  const bool par = comm.parallel();
+  std::string err;
+  try {
+    if (times_.empty()) {
+      std::error_code ec;
+      fs::create_directories(dir_ / "frames", ec);
+      if (ec) throw std::runtime_error("cannot create output folder '" + (dir_ / "frames").string() + "': " + ec.message());
+    }
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%06zu", times_.size());
+    const fs::path frames = dir_ / "frames";
+    const bool clumps = s.particles.fields().has(sim::Field::Body);
+    if (!par) {
+      write_particles(s, frames / (std::string("particles_") + buf + ".vtu"));
+      if (clumps) write_bodies(s, frames / (std::string("bodies_") + buf + ".vtu"));
+    } else {
+      const std::string ps = std::string("particles_") + buf, bs = std::string("bodies_") + buf;
+      const auto layout = write_particles(s, frames / piece_name(ps, comm.rank()));
+      if (comm.root()) write_pvtu(frames / (ps + ".pvtu"), layout, ps, comm.size());
+      if (clumps) {
+        const auto bl = write_bodies(s, frames / piece_name(bs, comm.rank()));
+        if (comm.root()) write_pvtu(frames / (bs + ".pvtu"), bl, bs, comm.size());
+      }
+    }
+    if (comm.root() && s.walls.count() > 0) write_walls(s, frames / (std::string("walls_") + buf + ".vtp"));
+    times_.push_back(s.clock.time);
+    steps_.push_back(s.clock.step);
+    last_step_ = s.clock.step;
+    write_series(s);
+  } catch (const std::exception& e) {
+    err = e.what();
   }
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%06zu", times_.size());
-  write_particles(s, dir_ / "frames" / (std::string("particles_") + buf + ".vtu"));
-  if (s.walls.count() > 0) write_walls(s, dir_ / "frames" / (std::string("walls_") + buf + ".vtp"));
-  const bool clumps = s.particles.fields().has(sim::Field::Body);
-  if (clumps) write_bodies(s, dir_ / "frames" / (std::string("bodies_") + buf + ".vtu"));
-  times_.push_back(s.clock.time);
-  steps_.push_back(s.clock.step);
-  last_step_ = s.clock.step;
-  write_pvd("particles.pvd", "particles_", ".vtu");
+  if (comm.agree_error(err)) throw std::runtime_error(err);
+}
+
+void VtkOutput::write_series(const sim::Scene& s) const {
+  if (!sim::Comm::world().root()) return;
+  const char* ext = sim::Comm::world().parallel() ? ".pvtu" : ".vtu";
+  write_pvd("particles.pvd", "particles_", ext);
   if (s.walls.count() > 0) write_pvd("walls.pvd", "walls_", ".vtp");
-  if (clumps) write_pvd("bodies.pvd", "bodies_", ".vtu");
+  if (s.particles.fields().has(sim::Field::Body)) write_pvd("bodies.pvd", "bodies_", ext);
 }
 
 void VtkOutput::resume(const sim::Scene& s, std::vector<double> times, std::vector<std::int64_t> steps) {
@@ -94,13 +132,17 @@ void VtkOutput::resume(const sim::Scene& s, std::vector<double> times, std::vect
   if (last_step_ != s.clock.step && every_ > 0 && s.clock.step % every_ == 0) {
     write_frame(s);
   } else if (!times_.empty()) {
-    write_pvd("particles.pvd", "particles_", ".vtu");
-    if (s.walls.count() > 0) write_pvd("walls.pvd", "walls_", ".vtp");
-    if (s.particles.fields().has(sim::Field::Body)) write_pvd("bodies.pvd", "bodies_", ".vtu");
+    write_series(s);
   }
 }
 
 namespace {
+
+std::string piece_name(const std::string& stem, int rank) {
+  char b[32];
+  std::snprintf(b, sizeof b, "_r%04d.vtu", rank);
+  return stem + b;
+}
 
 vtkNew<vtkDoubleArray> vec_array(const char* name, const std::vector<Vec3>& v, std::size_t n) {
   vtkNew<vtkDoubleArray> a;
@@ -123,9 +165,54 @@ void write_or_throw(W* w, const fs::path& file) {
   if (ec) throw std::runtime_error("could not write '" + file.string() + "': " + ec.message());
 }
 
+// The array layout of a piece, as the <PPointData>/<PPoints> of a .pvtu.
+std::string piece_layout(vtkUnstructuredGrid* g) {
+  auto xml_type = [](vtkDataArray* a) -> std::string {
+    switch (a->GetDataType()) {
+      case VTK_DOUBLE: return "Float64";
+      case VTK_FLOAT: return "Float32";
+      case VTK_INT: return "Int32";
+      case VTK_LONG_LONG: return "Int64";
+      case VTK_UNSIGNED_CHAR: return "UInt8";
+      default: return "Float64";
+    }
+  };
+  std::ostringstream o;
+  auto* pd = g->GetPointData();
+  o << "    <PPointData";
+  if (pd->GetScalars()) o << " Scalars=\"" << pd->GetScalars()->GetName() << "\"";
+  o << ">\n";
+  for (int k = 0; k < pd->GetNumberOfArrays(); ++k) {
+    auto* a = pd->GetArray(k);
+    o << "      <PDataArray type=\"" << xml_type(a) << "\" Name=\"" << a->GetName() << "\" NumberOfComponents=\""
+      << a->GetNumberOfComponents() << "\"/>\n";
+  }
+  o << "    </PPointData>\n    <PPoints>\n      <PDataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"/>\n"
+       "    </PPoints>\n";
+  return o.str();
+}
+
+// Writes the .pvtu index of a frame written as one piece per rank.
+void write_pvtu(const fs::path& file, const std::string& layout, const std::string& stem, int pieces) {
+  const fs::path tmp = file.string() + ".tmp";
+  {
+    std::ofstream o(tmp);
+    o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+         "  <PUnstructuredGrid GhostLevel=\"0\">\n"
+      << layout;
+    for (int r = 0; r < pieces; ++r) o << "    <Piece Source=\"" << piece_name(stem, r) << "\"/>\n";
+    o << "  </PUnstructuredGrid>\n</VTKFile>\n";
+    o.flush();
+    if (!o) throw std::runtime_error("could not write '" + file.string() + "' (disk full or not writable?)");
+  }
+  std::error_code ec;
+  fs::rename(tmp, file, ec);
+  if (ec) throw std::runtime_error("could not write '" + file.string() + "': " + ec.message());
+}
+
 }  // namespace
 
-void VtkOutput::write_particles(const sim::Scene& s, const fs::path& file) const {
+std::string VtkOutput::write_particles(const sim::Scene& s, const fs::path& file) const {
   const auto& p = s.particles;
   const std::size_t n = p.n_owned();
   vtkNew<vtkPoints> pts;
@@ -188,9 +275,10 @@ void VtkOutput::write_particles(const sim::Scene& s, const fs::path& file) const
   vtkNew<vtkXMLUnstructuredGridWriter> w;
   w->SetInputData(grid);
   write_or_throw(w.Get(), file);
+  return piece_layout(grid);
 }
 
-void VtkOutput::write_bodies(const sim::Scene& s, const fs::path& file) const {
+std::string VtkOutput::write_bodies(const sim::Scene& s, const fs::path& file) const {
   const auto& b = s.bodies;
   const std::size_t n = b.size();
   vtkNew<vtkPoints> pts;
@@ -231,6 +319,7 @@ void VtkOutput::write_bodies(const sim::Scene& s, const fs::path& file) const {
   vtkNew<vtkXMLUnstructuredGridWriter> w;
   w->SetInputData(grid);
   write_or_throw(w.Get(), file);
+  return piece_layout(grid);
 }
 
 void VtkOutput::write_walls(const sim::Scene& s, const fs::path& file) const {

@@ -6,7 +6,9 @@
 // quaternion, principal axes axis_1..3 as vectors), and a .pvd time series
 // for each that ParaView opens directly. The .pvd files are
 // rewritten atomically after every frame, so an interrupted run leaves a
-// valid series of the frames it wrote.
+// valid series of the frames it wrote. Under MPI each rank writes its piece
+// (frames/particles_NNNNNN_rRRRR.vtu) and rank 0 a .pvtu index per frame,
+// which the .pvd lists, so ParaView opens the run as one dataset.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -38,9 +40,11 @@ class VtkOutput final : public sim::Stage {
   void resume(const sim::Scene& s, std::vector<double> times, std::vector<std::int64_t> steps);
 
  private:
-  void write_particles(const sim::Scene& s, const std::filesystem::path& file) const;
+  // Each returns the array layout of the piece (for the .pvtu index).
+  std::string write_particles(const sim::Scene& s, const std::filesystem::path& file) const;
   void write_walls(const sim::Scene& s, const std::filesystem::path& file) const;
-  void write_bodies(const sim::Scene& s, const std::filesystem::path& file) const;
+  std::string write_bodies(const sim::Scene& s, const std::filesystem::path& file) const;
+  void write_series(const sim::Scene& s) const;
   void write_pvd(const std::string& name, const std::string& prefix, const std::string& ext) const;
   std::filesystem::path dir_;
   std::int64_t every_;

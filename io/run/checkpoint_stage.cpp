@@ -2,6 +2,8 @@
 
 #include "io/output/progress.hpp"
 #include "io/output/vtk_output.hpp"
+#include "sim/parallel/comm.hpp"
+#include "sim/parallel/gather.hpp"
 
 namespace grains::io {
 
@@ -41,17 +43,37 @@ CheckpointExtras CheckpointStage::extras() const {
 }
 
 fs::path CheckpointStage::save_to(sim::Scene& s, const fs::path& dir) {
+  const auto& comm = sim::Comm::world();
   if (blow_up_) {
-    const std::string bad = blow_up_->diagnose(s);
-    if (!bad.empty())
+    std::string bad = blow_up_->diagnose(s);
+    if (comm.agree_error(bad))
       throw BlowUp(bad + (last_.empty() ? std::string(". No checkpoint was written before it")
                                         : ". The last good checkpoint is " + last_.string() + " (kept)"));
   }
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw CheckpointError("cannot create checkpoint folder '" + dir.string() + "': " + ec.message());
   const fs::path file = dir / checkpoint_name(s.clock.step);
-  write_checkpoint(file, s, extras());
+  if (!s.exchange) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw CheckpointError("cannot create checkpoint folder '" + dir.string() + "': " + ec.message());
+    write_checkpoint(file, s, extras());
+    return file;
+  }
+  // Decomposed or periodic runs: the whole state gathered on rank 0, which
+  // writes it; histories are keyed by global ids, so any rank count can
+  // read it back. Every rank learns whether the write succeeded.
+  auto whole = sim::gather_scene(s);
+  std::string err;
+  if (comm.root()) {
+    try {
+      std::error_code ec;
+      fs::create_directories(dir, ec);
+      if (ec) throw CheckpointError("cannot create checkpoint folder '" + dir.string() + "': " + ec.message());
+      write_checkpoint(file, whole, extras());
+    } catch (const std::exception& e) {
+      err = e.what();
+    }
+  }
+  if (comm.agree_error(err)) throw CheckpointError(err);
   return file;
 }
 
@@ -60,7 +82,7 @@ fs::path CheckpointStage::save_now(sim::Scene& s) {
   last_ = save_to(s, dir_);
   last_step_ = s.clock.step;
   if (blow_up_) blow_up_->set_last_good_checkpoint(last_.string());
-  prune_checkpoints(dir_, keep_);
+  if (sim::Comm::world().root()) prune_checkpoints(dir_, keep_);
   return last_;
 }
 

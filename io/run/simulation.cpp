@@ -11,7 +11,12 @@
 
 #include <signal.h>
 
+#include <omp.h>
+
 #include "io/output/progress.hpp"
+#include "sim/neighbor/neighbor_stage.hpp"
+#include "sim/parallel/comm.hpp"
+#include "sim/parallel/exchange.hpp"
 #include "io/output/solid_fraction_output.hpp"
 #include "io/output/vtk_output.hpp"
 #include "io/run/checkpoint_stage.hpp"
@@ -117,7 +122,7 @@ void probe_output_dir(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw OutputFailure("cannot create the output folder '" + dir.string() + "': " + ec.message());
-  const auto probe = dir / ".grains-write-probe";
+  const auto probe = dir / (".grains-write-probe-" + std::to_string(sim::Comm::world().rank()));
   errno = 0;
   {
     std::ofstream o(probe);
@@ -162,25 +167,42 @@ void add_output_stages(Simulation& s, const RunOptions& opt) {
 }
 
 RunSummary run(Simulation& s, const RunOptions& opt) {
-  probe_output_dir(opt.out_dir);
+  const auto& comm = sim::Comm::world();
+  {
+    std::string err;
+    try {
+      probe_output_dir(opt.out_dir);
+    } catch (const std::exception& e) {
+      err = e.what();
+    }
+    if (comm.agree_error(err)) throw OutputFailure(err);
+  }
   add_output_stages(s, opt);
+  const bool talk = !opt.quiet && comm.root();
   for (const auto& w : s.c.scene.warnings)
-    if (!opt.quiet) *opt.log << w << "\n";
+    if (talk) *opt.log << w << "\n";
   auto* vtk = find_stage<VtkOutput>(s);
   auto* ck = find_stage<CheckpointStage>(s);
   RunSummary r;
   const auto t0 = std::chrono::steady_clock::now();
   if (!opt.restart.empty()) {
     const auto x = read_checkpoint(opt.restart, s.scene);
-    if (x.case_effective != effective_case(s.c) && !opt.quiet)
+    if (s.scene.exchange) {
+      // Every rank read the whole state: keep this rank's part and rebuild;
+      // the histories follow their pairs by global ids.
+      s.scene.exchange->distribute_initial(s.scene);
+      sim::NeighborStage::full_update(s.scene, s.c.scene.sort_particles);
+    }
+    if (x.case_effective != effective_case(s.c) && talk)
       *opt.log << "note: the case differs from the one " << opt.restart.string()
                << " was written with; continuing with the given case\n";
-    for (const auto& name : remove_checkpoints_after(ck->dir(), s.scene.clock.step))
-      if (!opt.quiet) *opt.log << "removed " << name << " (after the restart point)\n";
+    for (const auto& name : comm.root() ? remove_checkpoints_after(ck->dir(), s.scene.clock.step)
+                                        : std::vector<std::string>{})
+      if (talk) *opt.log << "removed " << name << " (after the restart point)\n";
     ck->restarted_from(opt.restart, s.scene.clock.step);
     if (vtk) vtk->resume(s.scene, x.frame_times, x.frame_steps);
     r.restarted_from = opt.restart.string();
-    if (!opt.quiet)
+    if (talk)
       *opt.log << "restarting from " << opt.restart.string() << " at step " << s.scene.clock.step << " (t = "
                << s.scene.clock.time << " s)\n";
   } else {
@@ -193,12 +215,15 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
   {
     SignalGuard guard(opt.handle_signals);
     try {
-      while (s.scene.clock.step < s.scene.clock.n_steps && g_signal == 0) {
+      // Under MPI the ranks agree on a signal (mpirun forwards it to all,
+      // not necessarily at the same step), so they stop at the same step.
+      auto stop = [&comm] { return comm.parallel() ? comm.any(g_signal != 0) : g_signal != 0; };
+      while (s.scene.clock.step < s.scene.clock.n_steps && !stop()) {
         particle_steps += static_cast<double>(s.scene.particles.n_owned());
         s.pipeline.step(s.scene);
       }
-      if (g_signal != 0) {
-        r.signal = g_signal;
+      if (stop()) {
+        r.signal = g_signal != 0 ? static_cast<int>(g_signal) : SIGTERM;
         std::string why;
         const auto f = save_somewhere(*ck, s, opt, why);
         if (f.empty()) throw OutputFailure("interrupted, and no checkpoint could be written: " + why);
@@ -230,12 +255,17 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.steps = s.scene.clock.step;
   r.simulated_time = s.scene.clock.time;
+  particle_steps = comm.sum(particle_steps);
+  r.particles_start = static_cast<std::size_t>(comm.sum(static_cast<std::int64_t>(r.particles_start)));
   r.particle_steps_per_second = r.wall_seconds > 0 ? particle_steps / r.wall_seconds : 0;
-  r.particles_end = s.scene.particles.n_owned();
-  r.lost_particles = s.scene.lost_particles;
+  r.particles_end = static_cast<std::size_t>(comm.sum(static_cast<std::int64_t>(s.scene.particles.n_owned())));
+  r.lost_particles = comm.sum(s.scene.lost_particles);
+  r.wall_seconds = comm.max(r.wall_seconds);
   r.neighbor_builds = s.scene.neighbors.stats().builds;
   if (vtk) r.frames = vtk->frames();
 
+  const std::int64_t migrated = s.scene.exchange ? comm.sum(s.scene.exchange->stats().migrated) : 0;
+  if (!comm.root()) return r;
   std::ofstream j(opt.out_dir / "summary.json");
   j.precision(10);
   j << "{\n  \"grains_version\": \"" << kVersion << "\",\n  \"case\": \"" << s.c.path << "\",\n"
@@ -244,7 +274,15 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
     << "  \"particle_steps_per_second\": " << r.particle_steps_per_second << ",\n"
     << "  \"particles_start\": " << r.particles_start << ",\n  \"particles_end\": " << r.particles_end << ",\n"
     << "  \"lost_particles\": " << r.lost_particles << ",\n  \"neighbor_builds\": " << r.neighbor_builds << ",\n"
-    << "  \"frames\": " << r.frames << ",\n";
+    << "  \"frames\": " << r.frames << ",\n"
+    << "  \"mpi_ranks\": " << comm.size() << ",\n  \"omp_threads\": " << omp_get_max_threads() << ",\n"
+    << "  \"deterministic\": " << (s.scene.deterministic ? "true" : "false") << ",\n";
+  if (s.scene.exchange) {
+    const auto& x = s.scene.exchange->stats();
+    j << "  \"decomposition\": \"" << s.scene.exchange->decomposition().describe() << "\",\n"
+      << "  \"rebalances\": " << x.rebalances << ",\n  \"migrated_particles\": " << migrated << ",\n"
+      << "  \"load_imbalance\": " << x.imbalance << ",\n";
+  }
   if (!r.restarted_from.empty()) j << "  \"restarted_from\": \"" << r.restarted_from << "\",\n";
   if (r.signal != 0) j << "  \"interrupted_by_signal\": " << r.signal << ",\n";
   if (!r.checkpoint.empty()) j << "  \"checkpoint\": \"" << r.checkpoint << "\",\n";

@@ -1,5 +1,6 @@
 #include "sim/parallel/exchange.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <unordered_map>
@@ -64,10 +65,20 @@ void Exchange::distribute_initial(Scene& s) {
   auto& b = s.bodies;
   wrap(s);
   if (!comm_.parallel()) return;
-  // Every rank holds all particles: balance on them without summing over ranks.
-  Comm one;  // a one-rank view for the histogram
-  dec_.balance(p.x, p.n_owned(), one);
+  // Every rank holds all particles: balance on them (a one-rank view, no
+  // sums over ranks) when the uniform cuts would leave the load uneven.
   const int me = comm_.rank();
+  {
+    std::vector<std::int64_t> load(static_cast<std::size_t>(comm_.size()), 0);
+    for (std::size_t i = 0; i < p.n_owned(); ++i) ++load[static_cast<std::size_t>(dec_.owner(p.x[i]))];
+    std::int64_t mx = 0;
+    for (auto l : load) mx = std::max(mx, l);
+    const double mean = static_cast<double>(p.n_owned()) / comm_.size();
+    if (mean > 0 && mx / mean > opt_.balance_threshold) {
+      Comm one;
+      if (dec_.balance(p.x, p.n_owned(), one)) ++stats_.rebalances;
+    }
+  }
   std::vector<char> gone_body(b.size(), 0);
   for (std::size_t k = 0; k < b.size(); ++k) gone_body[k] = dec_.owner(b.x[k]) != me;
   const bool clumps = p.fields().has(Field::Body);
