@@ -31,7 +31,8 @@ Decomposition::Decomposition(const Domain& d, int ranks, double min_width, std::
       double area = 0;
       for (int k = 0; k < 3; ++k) {
         const double face = L[(k + 1) % 3] * L[(k + 2) % 3];
-        area += (n[k] - (periodic_[k] || n[k] == 1 ? 0 : 1)) * face;
+        const int planes = n[k] == 1 ? 0 : periodic_[k] ? n[k] : n[k] - 1;
+        area += planes * face;
       }
       if (area < best * (1 - 1e-12)) {
         best = area;

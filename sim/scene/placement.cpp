@@ -66,16 +66,48 @@ std::vector<double> sample_radii(const SizeDistribution& d, std::int64_t count, 
 
 namespace {
 
-// Hash grid of placed spheres for overlap queries during placement.
+// Hash grid of placed spheres for overlap queries during placement. In a
+// periodic domain distances are taken to the nearest image and queries near
+// a periodic face look through it.
 class PlacementGrid {
  public:
-  explicit PlacementGrid(double cell) : cell_(cell) {}
+  PlacementGrid(double cell, const Domain& d) : cell_(cell), dom_(d) {}
   void insert(const Vec3& x, double r, std::size_t idx) {
     (void)r;
     cells_[key(cell_of(x))].push_back(idx);
   }
+  /// b - a, to the nearest periodic image.
+  Vec3 delta(const Vec3& a, const Vec3& b) const {
+    Vec3 d = b - a;
+    for (int k = 0; k < 3; ++k)
+      if (dom_.periodic[k]) {
+        const double L = dom_.hi[k] - dom_.lo[k];
+        d[k] -= L * std::round(d[k] / L);
+      }
+    return d;
+  }
   template <class Fn>
   bool any_near(const Vec3& x, Fn&& overlaps) const {
+    // x and its images across the periodic faces it is near.
+    std::array<std::array<double, 2>, 3> shifts{};
+    std::array<int, 3> n{1, 1, 1};
+    for (int k = 0; k < 3; ++k) {
+      shifts[k][0] = 0;
+      if (!dom_.periodic[k]) continue;
+      const double L = dom_.hi[k] - dom_.lo[k];
+      if (x[k] - dom_.lo[k] < cell_) shifts[k][n[k]++] = L;
+      else if (dom_.hi[k] - x[k] < cell_) shifts[k][n[k]++] = -L;
+    }
+    for (int a = 0; a < n[0]; ++a)
+      for (int b = 0; b < n[1]; ++b)
+        for (int c = 0; c < n[2]; ++c)
+          if (near_cells(Vec3(x[0] + shifts[0][a], x[1] + shifts[1][b], x[2] + shifts[2][c]), overlaps)) return true;
+    return false;
+  }
+
+ private:
+  template <class Fn>
+  bool near_cells(const Vec3& x, Fn& overlaps) const {
     const auto c = cell_of(x);
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
@@ -87,8 +119,6 @@ class PlacementGrid {
         }
     return false;
   }
-
- private:
   std::array<long, 3> cell_of(const Vec3& x) const {
     return {static_cast<long>(std::floor(x[0] / cell_)), static_cast<long>(std::floor(x[1] / cell_)),
             static_cast<long>(std::floor(x[2] / cell_))};
@@ -98,6 +128,7 @@ class PlacementGrid {
            (static_cast<long long>(c[2]) & 0x1FFFFF);
   }
   double cell_;
+  Domain dom_;
   std::unordered_map<long long, std::vector<std::size_t>> cells_;
 };
 
@@ -113,14 +144,16 @@ std::string fmt(double v) {
 std::vector<PlacedParticle> place_particles(const SceneConfig& c) {
   double rmax = 0;
   for (const auto& s : c.sets) rmax = std::max(rmax, s.size.largest() * s.shape.bounding_factor);
-  PlacementGrid grid(2 * rmax);
+  PlacementGrid grid(2 * rmax, c.domain);
   std::vector<PlacedParticle> out;
   for (std::size_t si = 0; si < c.sets.size(); ++si) {
     const auto& set = c.sets[si];
     std::mt19937_64 rng(set.placement.seed);
     const auto& reg = set.placement.region;
     auto free_at = [&](const Vec3& x, double r) {
-      return !grid.any_near(x, [&](std::size_t j) { return (out[j].x - x).squaredNorm() < (out[j].r + r) * (out[j].r + r); });
+      return !grid.any_near(x, [&](std::size_t j) {
+        return grid.delta(x, out[j].x).squaredNorm() < (out[j].r + r) * (out[j].r + r);
+      });
     };
     auto put = [&](const Vec3& x, double r, std::size_t k) {
       grid.insert(x, r, out.size());
@@ -200,11 +233,11 @@ void check_overlaps(const SceneConfig& c, const std::vector<PlacedParticle>& p) 
   double rmax = 0;
   for (const auto& q : p) rmax = std::max(rmax, q.r);
   if (p.empty()) return;
-  PlacementGrid grid(2 * rmax);
+  PlacementGrid grid(2 * rmax, c.domain);
   for (std::size_t i = 0; i < p.size(); ++i) {
     std::size_t other = 0;
     const bool bad = grid.any_near(p[i].x, [&](std::size_t j) {
-      const double d = (p[j].x - p[i].x).norm();
+      const double d = grid.delta(p[i].x, p[j].x).norm();
       const double ov = p[i].r + p[j].r - d;
       if (ov > c.overlap_tolerance * std::min(p[i].r, p[j].r)) {
         other = j;
@@ -221,7 +254,7 @@ void check_overlaps(const SceneConfig& c, const std::vector<PlacedParticle>& p) 
           return s.placement.position_where[q.index_in_set];
         return s.where;
       };
-      const double ov = a.r + b.r - (a.x - b.x).norm();
+      const double ov = a.r + b.r - grid.delta(a.x, b.x).norm();
       throw SetupError(where(b) + ": initial particles overlap: particle " + std::to_string(b.index_in_set) +
                        " of set '" + c.sets[b.set].name + "' and particle " + std::to_string(a.index_in_set) +
                        " of set '" + c.sets[a.set].name + "' overlap by " + fmt(ov) + " m (" +

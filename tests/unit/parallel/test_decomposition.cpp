@@ -1,0 +1,93 @@
+// The rank grid (sim/parallel/decomposition.hpp): its shape, owners and
+// neighbours, the quantile balance and its limits. One process; the rank
+// count is a parameter of the grid, not of the run.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "sim/parallel/decomposition.hpp"
+#include "sim/scene/scene.hpp"
+
+namespace grains::sim {
+namespace {
+
+Domain box(Vec3 hi, std::array<bool, 3> periodic = {false, false, false}) {
+  Domain d;
+  d.lo = Vec3::Zero();
+  d.hi = hi;
+  d.periodic = periodic;
+  return d;
+}
+
+TEST(Decomposition, SplitsTheLongestDimensionFirst) {
+  const Decomposition tall(box({1, 1, 8}), 4, 0.1);
+  EXPECT_EQ(tall.dims(), (std::array<int, 3>{1, 1, 4}));
+  const Decomposition flat(box({4, 4, 1}), 4, 0.1);
+  EXPECT_EQ(flat.dims(), (std::array<int, 3>{2, 2, 1}));
+  const Decomposition forced(box({4, 4, 1}), 4, 0.1, {4, 1, 1});
+  EXPECT_EQ(forced.dims(), (std::array<int, 3>{4, 1, 1}));
+}
+
+TEST(Decomposition, RefusesSlabsNarrowerThanTheGhostCutoff) {
+  EXPECT_THROW(Decomposition(box({1, 1, 1}), 4, 0.6), std::runtime_error);
+  try {
+    Decomposition(box({1, 1, 1}), 3, 0.5);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("at least the ghost cut-off"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Decomposition, OwnersAndNeighbours) {
+  const Decomposition d(box({2, 2, 2}), 8, 0.1);
+  ASSERT_EQ(d.dims(), (std::array<int, 3>{2, 2, 2}));
+  for (int r = 0; r < 8; ++r) {
+    const Vec3 c = 0.5 * (d.lo(r) + d.hi(r));
+    EXPECT_EQ(d.owner(c), r);
+    EXPECT_EQ(d.rank_at(d.coords(r)), r);
+  }
+  EXPECT_EQ(d.owner(Vec3(2, 2, 2)), 7);  // the upper faces belong to the last slab
+  EXPECT_EQ(d.owner(Vec3(-1, 0.5, 0.5)), 0);  // outside: clamped
+  bool wraps = true;
+  EXPECT_EQ(d.neighbor(0, 0, +1, wraps), 1);
+  EXPECT_FALSE(wraps);
+  EXPECT_EQ(d.neighbor(0, 0, -1, wraps), -1);  // non-periodic face
+  const Decomposition p(box({2, 2, 2}, {true, false, false}), 8, 0.1, {2, 2, 2});
+  EXPECT_EQ(p.neighbor(0, 0, -1, wraps), 1);
+  EXPECT_TRUE(wraps);
+}
+
+TEST(Decomposition, BalanceEqualisesABottomHeavyBed) {
+  // 90 % of the particles in the lowest tenth of a tall box.
+  Decomposition d(box({1, 1, 10}), 4, 0.2);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec3> x;
+  for (int i = 0; i < 20000; ++i) x.emplace_back(u(rng), u(rng), i % 10 ? u(rng) : 10 * u(rng));
+  // Uniform cuts at z = 2.5, 5, 7.5: the lowest slab holds ~92 %.
+  auto counts = [&] {
+    std::array<int, 4> c{};
+    for (const auto& xi : x) ++c[static_cast<std::size_t>(d.owner(xi))];
+    return c;
+  };
+  const auto before = counts();
+  EXPECT_GT(before[0], 17000);
+  const Comm one;
+  EXPECT_TRUE(d.balance(x, x.size(), one));
+  for (int c : counts()) EXPECT_NEAR(c, 5000, 300);
+  // Cut planes stay at least the minimum width apart.
+  const auto& z = d.cuts()[2];
+  for (std::size_t k = 1; k < z.size(); ++k) EXPECT_GE(z[k] - z[k - 1], 0.2 - 1e-12);
+}
+
+TEST(Decomposition, BalanceKeepsTheMinimumWidth) {
+  Decomposition d(box({1, 1, 1}), 4, 0.2);
+  std::vector<Vec3> x(1000, Vec3(0.5, 0.5, 0.01));  // everything at one height
+  const Comm one;
+  d.balance(x, x.size(), one);
+  const auto& z = d.cuts()[2];
+  for (std::size_t k = 1; k < z.size(); ++k) EXPECT_GE(z[k] - z[k - 1], 0.2 - 1e-12);
+}
+
+}  // namespace
+}  // namespace grains::sim

@@ -1,0 +1,136 @@
+// Periodic boundaries (serial: a rank is its own neighbour across a periodic
+// face): a particle leaving through a face comes back through the opposite
+// one, contacts act across the faces with the same physics as inside, and
+// a periodic box too small for its particles is refused.
+#include <gtest/gtest.h>
+
+#include "tests/support/sim_helpers.hpp"
+
+namespace grains::test {
+namespace {
+
+// Two spheres in a periodic box along x, approaching each other across the
+// x faces (or, for the reference, in the middle of the box).
+std::string two_spheres(bool across, double e) {
+  std::ostringstream o;
+  o.precision(17);
+  const double r = 0.001, L = 0.01;
+  // Across: a near x = 0 moving left, b near x = L moving right (gap 0.4 mm
+  // through the face); inside: a left of b, moving towards it.
+  const double xa = across ? 0.0012 : 0.0038, xb = across ? L - 0.0012 : 0.0062;
+  const double va = across ? -0.5 : 0.5;
+  o << "domain: {min: [0, 0, 0], max: [" << L << ", 0.006, 0.006], periodic: [true, false, false]}\n"
+    << "materials:\n" << material("m", 2500, 1e7, 0.3, e, 0) << "particles:\n"
+    << single("a", "m", sim::Vec3(xa, 0.003, 0.003), r, sim::Vec3(va, 0, 0))
+    << single("b", "m", sim::Vec3(xb, 0.003, 0.003), r, sim::Vec3(-va, 0, 0))
+    << "time: {dt_rayleigh: 0.01, end: 0.003}\n";  // ~230 steps per contact
+  return o.str();
+}
+
+double run_and_relative_speed(const std::string& yaml, std::int64_t& lost) {
+  auto s = from_yaml(yaml);
+  auto& sc = s.scene;
+  s.pipeline.initialize(sc);
+  while (sc.clock.step < sc.clock.n_steps) s.pipeline.step(sc);
+  lost = sc.lost_particles;
+  const auto& p = sc.particles;
+  const auto a = index_of(p, 0), b = index_of(p, 1);
+  EXPECT_EQ(p.n_owned(), 2u);
+  for (std::size_t i = 0; i < p.n_owned(); ++i) {
+    EXPECT_GE(p.x[i].x(), sc.domain.lo.x() - 0.001);  // wrapped back into the box (up to a skin)
+    EXPECT_LE(p.x[i].x(), sc.domain.hi.x() + 0.001);
+  }
+  return (p.v[a] - p.v[b]).x();
+}
+
+TEST(Periodic, ContactAcrossTheFaceHasTheSameRestitution) {
+  // Single-particle sets are placed as lattices: the helper puts each where asked.
+  for (double e : {0.3, 0.5, 0.9}) {
+    std::int64_t lost_a = -1, lost_b = -1;
+    // Either way |v_rel| after = e |v_rel| before (1 m/s).
+    const double across = run_and_relative_speed(two_spheres(true, e), lost_a);
+    const double inside = run_and_relative_speed(two_spheres(false, e), lost_b);
+    EXPECT_EQ(lost_a, 0);
+    EXPECT_EQ(lost_b, 0);
+    EXPECT_NEAR(std::abs(across), e * 1.0, 0.01 * e) << "e = " << e;
+    EXPECT_NEAR(std::abs(across), std::abs(inside), 1e-6) << "e = " << e;
+  }
+}
+
+TEST(Periodic, ParticleLeavingComesBack) {
+  std::ostringstream o;
+  o << "domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.01], periodic: true}\n"
+    << "materials:\n" << material("m", 2500, 1e7, 0.3, 0.5, 0) << "particles:\n"
+    << single("a", "m", sim::Vec3(0.005, 0.005, 0.005), 0.001, sim::Vec3(1, 0.7, -0.4))
+    << "time: {dt_rayleigh: 0.2, end: 0.05}\n";
+  auto s = from_yaml(o.str());
+  auto& sc = s.scene;
+  s.pipeline.initialize(sc);
+  while (sc.clock.step < sc.clock.n_steps) s.pipeline.step(sc);
+  EXPECT_EQ(sc.lost_particles, 0);
+  ASSERT_EQ(sc.particles.n_owned(), 1u);
+  // Free flight: 5 box lengths in x; the unwrapped position is x0 + v t.
+  const double t = sc.clock.time;
+  for (int d = 0; d < 3; ++d) {
+    const double v = d == 0 ? 1 : d == 1 ? 0.7 : -0.4;
+    double expect = std::fmod(0.005 + v * t, 0.01);
+    if (expect < 0) expect += 0.01;
+    double got = sc.particles.x[0][d];
+    // Between rebuilds the particle may be up to half a skin outside the box.
+    double diff = std::fmod(std::abs(got - expect), 0.01);
+    diff = std::min(diff, 0.01 - diff);
+    EXPECT_LT(diff, 1e-9) << "axis " << d;
+  }
+}
+
+TEST(Periodic, InitialOverlapThroughAFaceIsRefused) {
+  std::ostringstream o;
+  o << "domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.01], periodic: [true, false, false]}\n"
+    << "materials:\n" << material("m", 2500, 1e7, 0.3, 0.5, 0) << "particles:\n"
+    << single("a", "m", sim::Vec3(0.0004, 0.005, 0.005), 0.001, sim::Vec3(0, 0, 0))
+    << single("b", "m", sim::Vec3(0.0088, 0.005, 0.005), 0.001, sim::Vec3(0, 0, 0))
+    << "time: {dt_rayleigh: 0.2, end: 0.001}\n";
+  try {
+    from_yaml(o.str());
+    FAIL() << "spheres overlapping through a periodic face must be refused";
+  } catch (const sim::SetupError& e) {
+    EXPECT_NE(std::string(e.what()).find("overlap by 0.0004 m"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Periodic, BoxTooSmallIsRefused) {
+  std::ostringstream o;
+  o << "domain: {min: [0, 0, 0], max: [0.003, 0.01, 0.01], periodic: [true, false, false]}\n"
+    << "materials:\n" << material("m", 2500, 1e7, 0.3, 0.5, 0) << "particles:\n"
+    << single("a", "m", sim::Vec3(0.0015, 0.005, 0.005), 0.001, sim::Vec3(0, 0, 0))
+    << "time: {dt_rayleigh: 0.2, end: 0.001}\n";
+  try {
+    from_yaml(o.str());
+    FAIL() << "a periodic box under twice the cut-off must be refused";
+  } catch (const sim::SetupError& e) {
+    EXPECT_NE(std::string(e.what()).find("periodic box is too small along x"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Periodic, CaseKeyErrors) {
+  const std::string base = "materials:\n" + material("m", 2500, 1e7, 0.3, 0.5, 0) + "particles:\n" +
+                           single("a", "m", sim::Vec3(0.005, 0.005, 0.005), 0.001, sim::Vec3(0, 0, 0)) +
+                           "time: {dt_rayleigh: 0.2, end: 0.001}\n";
+  try {
+    from_yaml("domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.01], periodic: [true, false]}\n" + base);
+    FAIL();
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("test.yaml:1:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("periodic must be true, false or a list of 3 booleans"), std::string::npos)
+        << e.what();
+  }
+  try {
+    from_yaml("domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}\nparallel: {decomposition: [2, 0, 1]}\n" + base);
+    FAIL();
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("decomposition must be 3 positive integers"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace grains::test
