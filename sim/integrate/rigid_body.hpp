@@ -20,6 +20,7 @@
 
 #include "contact/ellipsoid/ellipsoid.hpp"
 #include "sim/scene/stage.hpp"
+#include "sim/state/parallel_for.hpp"
 
 namespace grains::sim {
 
@@ -57,12 +58,11 @@ inline Quat rotate(const Quat& q, const Vec3& w, double dt) {
 
 inline void rigid_half_kick(ParticleStore& p, double half_dt) {
   const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
-#pragma omp parallel for schedule(static) if (n > 4096)
-  for (std::ptrdiff_t i = 0; i < n; ++i) {
+  parallel_for(use_threads(n, 1024), n, [&](std::ptrdiff_t i) {
     p.v[i] += (half_dt * p.inv_mass[i]) * p.f[i];
     p.angular_momentum[i] += half_dt * p.torque[i];
     p.omega[i] = angular_velocity(p.orientation[i], p.inertia[i], p.angular_momentum[i]);
-  }
+  });
 }
 
 /// Refreshes the PW85 forms of the ellipsoids among particles [0, n).
@@ -80,8 +80,7 @@ class RigidBodyDrift final : public Stage {
     const double dt = s.clock.dt;
     const double half_dt = 0.5 * dt;
     const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
-#pragma omp parallel for schedule(static) if (n > 4096)
-    for (std::ptrdiff_t i = 0; i < n; ++i) {
+    parallel_for(use_threads(n, 1024), n, [&](std::ptrdiff_t i) {
       // Half kick (as rigid_half_kick), then the drift; one rotation matrix
       // per orientation and the reciprocal inertia once.
       p.v[i] += (half_dt * p.inv_mass[i]) * p.f[i];
@@ -100,7 +99,7 @@ class RigidBodyDrift final : public Stage {
       const Eigen::Matrix3d R = p.orientation[i].toRotationMatrix();
       p.omega[i] = R * (R.transpose() * L).cwiseProduct(inv_inertia);
       if (p.shape[i] == kEllipsoid) p.form[i] = contact::quadratic_form(p.semi_axes[i], R);
-    }
+    });
   }
 };
 

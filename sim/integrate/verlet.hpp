@@ -9,6 +9,7 @@
 #include <string>
 
 #include "sim/scene/stage.hpp"
+#include "sim/state/parallel_for.hpp"
 
 namespace grains::sim {
 
@@ -17,20 +18,17 @@ namespace grains::sim {
 template <bool Rotation, bool SkipClumpBalls = false>
 inline void verlet_half_kick(ParticleStore& p, double half_dt) {
   const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
-#pragma omp parallel for schedule(static) if (n > 4096)
-  for (std::ptrdiff_t i = 0; i < n; ++i) {
+  parallel_for(use_threads(n), n, [&](std::ptrdiff_t i) {
     if constexpr (SkipClumpBalls)
-      if (p.body[i] >= 0) continue;
+      if (p.body[i] >= 0) return;
     p.v[i] += (half_dt * p.inv_mass[i]) * p.f[i];
-  }
-  if constexpr (Rotation) {
-#pragma omp parallel for schedule(static) if (n > 4096)
-    for (std::ptrdiff_t i = 0; i < n; ++i) {
+  });
+  if constexpr (Rotation)
+    parallel_for(use_threads(n), n, [&](std::ptrdiff_t i) {
       if constexpr (SkipClumpBalls)
-        if (p.body[i] >= 0) continue;
+        if (p.body[i] >= 0) return;
       p.omega[i] += (half_dt / p.inertia[i].x()) * p.torque[i];
-    }
-  }
+    });
 }
 
 template <bool Rotation, bool SkipClumpBalls = false>
@@ -46,12 +44,11 @@ class VerletDrift final : public Stage {
     const double dt = s.clock.dt;
     verlet_half_kick<Rotation, SkipClumpBalls>(p, 0.5 * dt);
     const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
-#pragma omp parallel for schedule(static) if (n > 4096)
-    for (std::ptrdiff_t i = 0; i < n; ++i) {
+    parallel_for(use_threads(n), n, [&](std::ptrdiff_t i) {
       if constexpr (SkipClumpBalls)
-        if (p.body[i] >= 0) continue;
+        if (p.body[i] >= 0) return;
       p.x[i] += dt * p.v[i];
-    }
+    });
   }
 };
 

@@ -95,7 +95,7 @@ class ShapePairContactStage final : public Stage {
   static constexpr int H = Law::history_size;
   static constexpr int NH = H + 1;  // + PW85 lambda
 
-  static bool contact(Scene& s, std::size_t i, std::uint32_t k, Vec3& force, Vec3& ti, Vec3& tj) {
+  static GRAINS_INLINE bool contact(Scene& s, std::size_t i, std::uint32_t k, Vec3& force, Vec3& ti, Vec3& tj) {
     ParticleStore& p = s.particles;
     NeighborList& nl = s.neighbors;
     const std::size_t j = nl.partner[k];

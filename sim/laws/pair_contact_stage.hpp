@@ -29,7 +29,7 @@ class PairContactStage final : public Stage {
   static constexpr bool Rot = Law::needs_rotation;
 
   // The contact of list entry k (row i): false when the pair does not touch.
-  static bool contact(Scene& s, std::size_t i, std::uint32_t k, Vec3& force, Vec3& ti, Vec3& tj) {
+  static GRAINS_INLINE bool contact(Scene& s, std::size_t i, std::uint32_t k, Vec3& force, Vec3& ti, Vec3& tj) {
     ParticleStore& p = s.particles;
     NeighborList& nl = s.neighbors;
     const std::size_t j = nl.partner[k];

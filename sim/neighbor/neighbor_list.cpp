@@ -80,7 +80,6 @@ void NeighborList::sort_by_cell(ParticleStore& p, const Vec3& lo, const Vec3& hi
 void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bound, const Vec3& hi_bound, double time,
                          bool sort) {
   const std::size_t n_own = p.n_owned();
-  if (sort && p.n_ghost() == 0) sort_by_cell(p, lo_bound, hi_bound);
   const std::size_t n = p.size();
   // The previous rows, for carrying history by global ids.
   std::vector<std::uint32_t> old_row_start, old_partner;
@@ -90,7 +89,11 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
     old_partner.swap(partner);
     old_history.swap(history);
   }
-  const CellGrid grid(p, n, skin_, lo_bound, hi_bound);
+  CellGrid grid(p, n, skin_, lo_bound, hi_bound);
+  if (sort && p.n_ghost() == 0) {
+    p.permute(grid.order);  // particles now in cell order: slot k holds particle k
+    std::iota(grid.order.begin(), grid.order.end(), std::size_t{0});
+  }
   const auto& dims = grid.dims;
   const auto& cell_start = grid.cell_start;
   const auto& order = grid.order;
@@ -238,16 +241,33 @@ void NeighborList::carry_history(const ParticleStore& p, const std::vector<std::
   for (std::size_t m = 0; 2 * m < imported_ids_.size(); ++m)
     keys.push_back({imported_ids_[2 * m], imported_ids_[2 * m + 1], imported_history_.data() + m * H});
   if (!keys.empty()) {
-    auto less = [](const Key& x, const Key& y) { return x.a < y.a || (x.a == y.a && x.b < y.b); };
-    std::stable_sort(keys.begin(), keys.end(), less);
+    // Counting sort by the first id (ids are dense), keeping insertion order
+    // within one id: the old list first, then imported copies (first wins).
+    std::int64_t max_a = 0;
+    for (const auto& k : keys) max_a = std::max(max_a, k.a);
+    for (std::size_t i = 0; i < p.size(); ++i) max_a = std::max(max_a, p.id[i]);
+    std::vector<std::uint32_t> start(static_cast<std::size_t>(max_a) + 2, 0);
+    for (const auto& k : keys) ++start[static_cast<std::size_t>(k.a) + 1];
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<Key> by_a(keys.size());
+    {
+      std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+      for (const auto& k : keys) by_a[fill[static_cast<std::size_t>(k.a)]++] = k;
+    }
     const std::size_t rows = row_start.size() - 1;
-    for (std::size_t i = 0; i < rows; ++i)
+    for (std::size_t i = 0; i < rows; ++i) {
+      const auto a = static_cast<std::size_t>(p.id[i]);
+      const auto k0 = start[a], k1 = start[a + 1];
+      if (k0 == k1) continue;
       for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
-        const Key q{p.id[i], p.id[partner[k]], nullptr};
-        const auto it = std::lower_bound(keys.begin(), keys.end(), q, less);
-        if (it != keys.end() && it->a == q.a && it->b == q.b)
-          std::copy_n(it->h, H, history.begin() + static_cast<std::ptrdiff_t>(k * H));
+        const auto b = p.id[partner[k]];
+        for (auto q = k0; q < k1; ++q)
+          if (by_a[q].b == b) {
+            std::copy_n(by_a[q].h, H, history.begin() + static_cast<std::ptrdiff_t>(k * H));
+            break;
+          }
       }
+    }
   }
   imported_ids_.clear();
   imported_history_.clear();

@@ -10,6 +10,7 @@
 #include "contact/ellipsoid/ellipsoid_walls.hpp"
 #include "sim/laws/contact_law.hpp"
 #include "sim/scene/stage.hpp"
+#include "sim/state/parallel_for.hpp"
 
 namespace grains::sim {
 
@@ -47,8 +48,7 @@ class PlaneWallStage final : public Stage {
       // Each particle appears once per wall: rows are independent.
       const auto& near = s.neighbors.plane_near[w];
       const auto nn = static_cast<std::ptrdiff_t>(near.size());
-#pragma omp parallel for schedule(static) if (s.deterministic)
-      for (std::ptrdiff_t m = 0; m < nn; ++m) {
+      parallel_for(s.deterministic && use_threads(nn, 256), nn, [&](std::ptrdiff_t m) {
         const std::size_t i = near[static_cast<std::size_t>(m)];
         double* hist = H > 0 ? p.wall_history.data() + static_cast<std::size_t>(i) * WH + wall.history_slot * H : nullptr;
         contact::ContactGeometry g;
@@ -65,10 +65,10 @@ class PlaneWallStage final : public Stage {
         }
         if (!touching) {
           if constexpr (H > 0) std::fill_n(hist, H, 0.0);
-          continue;
+          return;
         }
         WallContact<Law, Law::needs_rotation || Shapes>::apply(p, i, g, wall.velocity, s.pairs(p.material[i], wall.material), s.clock.dt, hist);
-      }
+      });
     }
   }
 };
@@ -89,8 +89,7 @@ class CylinderWallStage final : public Stage {
       // Each particle appears once per wall: rows are independent.
       const auto& near = s.neighbors.cylinder_near[w];
       const auto nn = static_cast<std::ptrdiff_t>(near.size());
-#pragma omp parallel for schedule(static) if (s.deterministic)
-      for (std::ptrdiff_t m = 0; m < nn; ++m) {
+      parallel_for(s.deterministic && use_threads(nn, 256), nn, [&](std::ptrdiff_t m) {
         const std::size_t i = near[static_cast<std::size_t>(m)];
         double* hist = H > 0 ? p.wall_history.data() + static_cast<std::size_t>(i) * WH + wall.history_slot * H : nullptr;
         contact::ContactGeometry g;
@@ -109,10 +108,10 @@ class CylinderWallStage final : public Stage {
         }
         if (!touching) {
           if constexpr (H > 0) std::fill_n(hist, H, 0.0);
-          continue;
+          return;
         }
         WallContact<Law, Law::needs_rotation || Shapes>::apply(p, i, g, wall.velocity, s.pairs(p.material[i], wall.material), s.clock.dt, hist);
-      }
+      });
     }
   }
 };
