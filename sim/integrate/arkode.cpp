@@ -21,6 +21,7 @@
 
 #include "contact/ellipsoid/ellipsoid.hpp"
 #include "sim/integrate/clump_bodies.hpp"
+#include "sim/parallel/exchange.hpp"
 #endif
 
 namespace grains::sim {
@@ -270,6 +271,8 @@ void ErkDriver::unpack(const double* y) {
     }
     place_clump_balls(p, b, true);
   }
+  // Periodic images follow their particles.
+  if (scene_->exchange) scene_->exchange->update_ghosts(p);
   if (H_ == 0) return;
   // The springs of this state; rates are written by the laws of touching
   // contacts only, so they start at zero. Every entry may touch: a separated

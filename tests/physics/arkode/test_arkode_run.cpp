@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <random>
 
 #include "io/checkpoint/checkpoint.hpp"
 #include "sim/integrate/arkode.hpp"
@@ -72,6 +73,78 @@ TEST(ArkodeRun, AStateItCannotIntegrateEndsTheRunWithAnIntegrationFailure) {
   } catch (const sim::IntegrationFailure& e) {
     EXPECT_NE(std::string(e.what()).find("ARKODE could not continue at t = 0 s"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace grains::test
+
+namespace grains::test {
+namespace {
+
+// Kinetic energy, and whether any pair touches (minimum image in the box).
+double kinetic(const sim::Scene& s, bool& touching) {
+  const auto& p = s.particles;
+  const sim::Vec3 L = s.domain.hi - s.domain.lo;
+  double e = 0;
+  touching = false;
+  for (std::size_t i = 0; i < p.n_owned(); ++i) {
+    e += 0.5 * p.mass[i] * p.v[i].squaredNorm();
+    for (std::size_t j = i + 1; j < p.n_owned(); ++j) {
+      sim::Vec3 d = p.x[i] - p.x[j];
+      for (int a = 0; a < 3; ++a) d[a] -= L[a] * std::round(d[a] / L[a]);
+      touching = touching || d.norm() < p.radius[i] + p.radius[j];
+    }
+  }
+  return e;
+}
+
+TEST(ArkodeRun, ElasticGasInAPeriodicBoxKeepsMomentumAndEnergy) {
+  // 27 spheres, fully periodic, random velocities (0.2 m/s): they cross the
+  // faces many times and collide across them (ghost images follow every
+  // trial state). Between collisions the kinetic energy is the initial one.
+  const std::string yaml = R"(
+domain: {min: [0, 0, 0], max: [0.006, 0.006, 0.006], periodic: true}
+materials:
+  - {name: m, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3, restitution: 1.0, friction: 0}
+particles:
+  - {material: m, radius: 0.0005, count: 27, placement: {type: lattice, region: {min: [0.0005, 0.0005, 0.0005], max: [0.0058, 0.0058, 0.0058]}, spacing: 0.002}}
+time: {dt_rayleigh: 0.5, end: 0.05, integrator: arkode, rtol: 1.0e-8, atol: 1.0e-8}
+)";
+  auto s = from_yaml(yaml);
+  auto& p = s.scene.particles;
+  ASSERT_EQ(p.n_owned(), 27u);
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> n(0.0, 0.2);
+  sim::Vec3 mean = sim::Vec3::Zero();
+  for (std::size_t i = 0; i < p.n_owned(); ++i) {
+    p.v[i] = sim::Vec3(n(rng), n(rng), n(rng));
+    mean += p.v[i] / 27.0;
+  }
+  for (std::size_t i = 0; i < p.n_owned(); ++i) p.v[i] -= mean;  // zero total momentum
+  s.pipeline.initialize(s.scene);
+  bool touching = false;
+  const double e0 = kinetic(s.scene, touching);
+  ASSERT_FALSE(touching);
+  double worst = 0;
+  int quiet_samples = 0, contact_samples = 0;
+  while (s.scene.clock.step < s.scene.clock.n_steps) {
+    s.pipeline.step(s.scene);
+    const double e = kinetic(s.scene, touching);
+    if (touching) {
+      ++contact_samples;
+    } else {
+      ++quiet_samples;
+      worst = std::max(worst, std::abs(e - e0) / e0);
+    }
+  }
+  sim::Vec3 P = sim::Vec3::Zero();
+  for (std::size_t i = 0; i < p.n_owned(); ++i) P += p.mass[i] * p.v[i];
+  EXPECT_LT(P.norm(), 1e-12 * p.mass[0] * 0.2);
+  EXPECT_GT(contact_samples, 20) << "collisions happened";
+  EXPECT_GT(quiet_samples, 20);
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_EQ(s.scene.lost_particles, 0);
+  for (std::size_t i = 0; i < p.n_owned(); ++i) EXPECT_TRUE(s.scene.domain.contains(p.x[i]));
 }
 
 }  // namespace
