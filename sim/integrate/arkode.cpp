@@ -160,6 +160,12 @@ class ErkDriver final : public ArkodeIntegrator {
     N_Vector v = threads_ > 1 && n > kThreadedVectorAbove ? N_VNew_OpenMP(len, threads_, ctx_)
                                                            : N_VNew_Serial(len, ctx_);
     if (!v) throw std::runtime_error("SUNDIALS: cannot allocate a vector of " + std::to_string(n));
+    // Fused operations: one pass over memory for each linear combination of
+    // stages (without them SUNDIALS loops scale-and-add over the vectors).
+    if (threads_ > 1 && n > kThreadedVectorAbove)
+      N_VEnableFusedOps_OpenMP(v, SUNTRUE);
+    else
+      N_VEnableFusedOps_Serial(v, SUNTRUE);
     v->ops->nvwrmsnorm = max_weighted_norm;  // clones (ARKODE's own vectors) inherit it
     return v;
   }
@@ -195,6 +201,10 @@ class ErkDriver final : public ArkodeIntegrator {
   std::size_t bodies_offset() const { return free_.size() * static_cast<std::size_t>(width_); }
   std::size_t pairs_offset() const { return bodies_offset() + bodies_ * kBodyWidth; }
   std::size_t walls_offset() const { return pairs_offset() + pairs_ * static_cast<std::size_t>(H_); }
+  // The wall-history slots in y: offsets into ParticleStore::wall_history of
+  // [state | rate] for the particles in each wall's near list (the only
+  // slots the wall stages read or write).
+  std::vector<std::size_t> wall_entry_;
 
   ArkodeConfig cfg_;
   ArkodeLayout lay_;
@@ -209,8 +219,6 @@ class ErkDriver final : public ArkodeIntegrator {
   std::vector<std::size_t> free_;  // owned particles in y (not clump balls), in order
   std::size_t bodies_ = 0;         // clumps in y, after the free particles
   std::size_t pairs_ = 0;          // neighbour-list entries in y (H_ doubles each), after the bodies
-  std::size_t wall_particles_ = 0;  // particles with wall slots in y, after the pairs
-  int wall_slots_ = 0;              // walls per particle
   std::vector<Vec3> x_ref_, body_ref_;  // positions at the last pack: y holds x - x_ref
   long packed_builds_ = -1;             // neighbour build count at the last pack
   // Neighbour look-ahead: positions and time of the last build.
@@ -223,6 +231,7 @@ class ErkDriver final : public ArkodeIntegrator {
   Walls walls_ref_;
   double walls_t0_ = 0;
   double t_ = 0, dt_ = 0;  // time of y_; the clock's step
+  double last_step_ = 0;   // the last accepted step
   // Valid during drive().
   Scene* scene_ = nullptr;
   Pipeline* pipe_ = nullptr;
@@ -286,15 +295,13 @@ void ErkDriver::unpack(const double* y) {
     std::fill_n(h + H_, H_, 0.0);
     nl.pair_constants[k].may_touch = true;
   }
-  const std::size_t WH = static_cast<std::size_t>(p.wall_history_size());
   const double* yw = y + walls_offset();
-  for (std::size_t i = 0; i < wall_particles_; ++i)
-    for (int w = 0; w < wall_slots_; ++w) {
-      double* h = p.wall_history.data() + i * WH + static_cast<std::size_t>(w) * 2 * H_;
-      std::copy_n(yw, H_, h);
-      std::fill_n(h + H_, H_, 0.0);
-      yw += H_;
-    }
+  for (const std::size_t e : wall_entry_) {
+    double* h = p.wall_history.data() + e;
+    std::copy_n(yw, H_, h);
+    std::fill_n(h + H_, H_, 0.0);
+    yw += H_;
+  }
 }
 
 bool ErkDriver::derivatives(const double* y, double* ydot) const {
@@ -338,11 +345,11 @@ bool ErkDriver::derivatives(const double* y, double* ydot) const {
     const std::size_t S = static_cast<std::size_t>(nl.history_size());
     double* dp = ydot + pairs_offset();
     for (std::size_t k = 0; k < pairs_; ++k) std::copy_n(nl.history.data() + k * S + H_, H_, dp + k * H_);
-    const std::size_t WH = static_cast<std::size_t>(p.wall_history_size());
     double* dw = ydot + walls_offset();
-    for (std::size_t i = 0; i < wall_particles_; ++i)
-      for (int w2 = 0; w2 < wall_slots_; ++w2, dw += H_)
-        std::copy_n(p.wall_history.data() + i * WH + static_cast<std::size_t>(w2) * 2 * H_ + H_, H_, dw);
+    for (const std::size_t e : wall_entry_) {
+      std::copy_n(p.wall_history.data() + e + H_, H_, dw);
+      dw += H_;
+    }
     // (Rates are finite whenever the velocities are.)
   }
   return finite;
@@ -371,9 +378,18 @@ void ErkDriver::pack() {
     if (!balls || p.body[i] < 0) free_.push_back(i);
   bodies_ = lay_.clumps ? s.bodies.size() : 0;
   pairs_ = H_ > 0 ? nl.partner.size() : 0;
-  wall_slots_ = H_ > 0 ? p.wall_history_size() / (2 * H_) : 0;
-  wall_particles_ = wall_slots_ > 0 ? p.n_owned() : 0;
-  const std::size_t n = walls_offset() + wall_particles_ * static_cast<std::size_t>(wall_slots_ * H_);
+  wall_entry_.clear();
+  if (H_ > 0 && p.wall_history_size() > 0) {
+    const std::size_t WH = static_cast<std::size_t>(p.wall_history_size());
+    auto add = [&](const std::vector<std::uint32_t>& near, int slot) {
+      for (const auto i : near) wall_entry_.push_back(i * WH + static_cast<std::size_t>(slot) * 2 * H_);
+    };
+    for (std::size_t w = 0; w < s.walls.planes.size() && w < nl.plane_near.size(); ++w)
+      add(nl.plane_near[w], s.walls.planes[w].history_slot);
+    for (std::size_t w = 0; w < s.walls.cylinders.size() && w < nl.cylinder_near.size(); ++w)
+      add(nl.cylinder_near[w], s.walls.cylinders[w].history_slot);
+  }
+  const std::size_t n = walls_offset() + wall_entry_.size() * static_cast<std::size_t>(H_);
   const bool resize = mem_ && n != n_state_;
   if (!y_ || n != n_state_) {
     // ARKODE keeps clones, never these vectors: they can go.
@@ -439,14 +455,14 @@ void ErkDriver::pack() {
     std::copy_n(nl.history.data() + k * S, H_, y + pairs_offset() + k * H_);
     history_tolerances(a + pairs_offset() + k * H_);
   }
-  const std::size_t WH = static_cast<std::size_t>(p.wall_history_size());
   double* yw = y + walls_offset();
   double* aw = a + walls_offset();
-  for (std::size_t i = 0; i < wall_particles_; ++i)
-    for (int w = 0; w < wall_slots_; ++w, yw += H_, aw += H_) {
-      std::copy_n(p.wall_history.data() + i * WH + static_cast<std::size_t>(w) * 2 * H_, H_, yw);
-      history_tolerances(aw);
-    }
+  for (const std::size_t e : wall_entry_) {
+    std::copy_n(p.wall_history.data() + e, H_, yw);
+    history_tolerances(aw);
+    yw += H_;
+    aw += H_;
+  }
   if (!mem_) {
     mem_ = ERKStepCreate(rhs_callback, t_, y_, ctx_);
     if (!mem_) throw std::runtime_error("SUNDIALS: ERKStepCreate failed");
@@ -504,21 +520,32 @@ double ErkDriver::neighbours(double stop) {
     const double travel = m + 2.0 * vmax * horizon + 0.5 * g * horizon * horizon;
     return 2.0 * travel <= skin && travel + s.walls.max_displacement(t_ + horizon - build_time_) <= skin;
   };
+  // The longest stretch (up to `stop`) the list covers, by bisection (fits
+  // is monotone in the horizon).
+  auto longest = [&](double horizon) {
+    if (fits(horizon)) return horizon;
+    double lo = 0, hi = horizon;
+    for (int k = 0; k < 40; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (fits(mid) ? lo : hi) = mid;
+    }
+    return lo;
+  };
   measure();
-  double horizon = stop - t_;
-  if (!fits(horizon)) {
-    if (m > 0) {
-      s.neighbors.invalidate();
-      run_neighbor_phase();
-      ++stats_.lookahead_rebuilds;
-      measure();
-    }
-    for (int k = 0; !fits(horizon); ++k) {
-      if (k > 60) throw IntegrationFailure("ARKODE: the neighbour skin cannot cover any step (particles too fast)");
-      horizon *= 0.5;
-    }
-    stop = t_ + horizon;
+  const double wanted = stop - t_;
+  double horizon = longest(wanted);
+  // Rebuild early only when the list would cut the next stretch shorter
+  // than a step ARKODE is taking (or a twentieth of the clock step).
+  const double useful = std::min(wanted, std::max(last_step_, 0.05 * dt_));
+  if (horizon < useful && m > 0) {
+    s.neighbors.invalidate();
+    run_neighbor_phase();
+    ++stats_.lookahead_rebuilds;
+    measure();
+    horizon = longest(wanted);
   }
+  if (!(horizon > 0)) throw IntegrationFailure("ARKODE: the neighbour skin cannot cover any step (particles too fast)");
+  stop = horizon < wanted ? t_ + horizon : stop;
   if (!mem_ || packed_builds_ != s.neighbors.stats().builds) pack();
   return stop;
 }
@@ -532,11 +559,11 @@ void ErkDriver::project(double* y) {
     double* yp = y + pairs_offset();
     for (std::size_t k = 0; k < pairs_; ++k) std::copy_n(nl.history.data() + k * S, H_, yp + k * H_);
     const auto& p = scene_->particles;
-    const std::size_t WH = static_cast<std::size_t>(p.wall_history_size());
     double* yw = y + walls_offset();
-    for (std::size_t i = 0; i < wall_particles_; ++i)
-      for (int w = 0; w < wall_slots_; ++w, yw += H_)
-        std::copy_n(p.wall_history.data() + i * WH + static_cast<std::size_t>(w) * 2 * H_, H_, yw);
+    for (const std::size_t e : wall_entry_) {
+      std::copy_n(p.wall_history.data() + e, H_, yw);
+      yw += H_;
+    }
   }
   if (lay_.rigid)
     for (std::size_t k = 0; k < free_.size(); ++k) {
@@ -563,6 +590,7 @@ int ErkDriver::take_step(double stop) {
     throw IntegrationFailure(o.str());
   }
   const double h = tret - t_;
+  last_step_ = h;
   stats_.min_step = stats_.steps == 0 ? h : std::min(stats_.min_step, h);
   stats_.max_step = std::max(stats_.max_step, h);
   ++stats_.steps;
