@@ -25,6 +25,8 @@ struct ImpactRun {
   double energy_drift = 0;  // (KE_after - e^2 KE_before) / KE_before
   double wall_seconds = 0;
   std::string stats;  // the ARKODE driver's figures, if any
+  double rayleigh_time = 0;
+  std::int64_t clock_steps = 0;
   // Analytic values.
   double tc_hertz = 0, dmax_hertz = 0;
 };
@@ -89,6 +91,8 @@ inline ImpactRun run_impact(const ImpactSpec& c) {
   y << "time: {" << c.time_keys << ", end: " << end << "}\n";
   auto s = from_yaml(y.str());
   auto& sc = s.scene;
+  out.rayleigh_time = s.rayleigh_time;
+  out.clock_steps = sc.clock.n_steps;
   const auto t0 = std::chrono::steady_clock::now();
   s.pipeline.initialize(sc);
   auto gap_rate = [&](double& d, double& r) {
