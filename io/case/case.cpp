@@ -532,7 +532,21 @@ class CaseParser {
     if (!v_.check_map(n, d, "time")) return;
     auto& sc = c_.scene;
     sc.end_time = v_.number(n, d, "end", "time", 1);
-    (void)v_.string(n, d, "integrator", "time", "verlet");
+    const std::string integrator = v_.string(n, d, "integrator", "time", "verlet");
+    sc.integrator = integrator == "arkode" ? sim::Integrator::Arkode : sim::Integrator::Verlet;
+    sc.integrator_where = v_.where(n["integrator"] ? n["integrator"] : n);
+    // (Not when the integrator itself is misspelt: that error says enough.)
+    const bool verlet = !n["integrator"] || (n["integrator"].IsScalar() && n["integrator"].Scalar() == "verlet");
+    for (const char* k : {"rtol", "atol", "order"})
+      if (n[k] && verlet)
+        v_.error(n[k], "time", std::string(k) + " applies to integrator: arkode; this case integrates with verlet (fixed step dt)");
+    sc.arkode.rtol = v_.number(n, d, "rtol", "time", sc.arkode.rtol);
+    sc.arkode.atol = v_.number(n, d, "atol", "time", sc.arkode.atol);
+    sc.arkode.order = static_cast<int>(v_.integer(n, d, "order", "time", sc.arkode.order));
+    if (n["order"] && sc.arkode.order == 7) {
+      v_.error(n["order"], "time", "order = 7 has no ARKODE explicit table; valid: 2, 3, 4, 5, 6, 8");
+      sc.arkode.order = 4;
+    }
     if (n["dt"] && n["dt_rayleigh"]) {
       v_.error(n["dt_rayleigh"], "time", "give either dt or dt_rayleigh, not both");
     } else if (!n["dt"] && !n["dt_rayleigh"]) {

@@ -20,6 +20,7 @@
 #include "io/output/solid_fraction_output.hpp"
 #include "io/output/vtk_output.hpp"
 #include "io/run/checkpoint_stage.hpp"
+#include "sim/integrate/arkode.hpp"
 #include "grains/version.hpp"
 
 namespace grains::io {
@@ -233,6 +234,8 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
       }
     } catch (const BlowUp&) {
       throw;
+    } catch (const sim::IntegrationFailure&) {
+      throw;
     } catch (const OutputFailure&) {
       throw;
     } catch (const std::exception& e) {
@@ -290,7 +293,17 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
   const auto names = s.pipeline.stage_names();
   for (std::size_t k = 0; k < names.size(); ++k)
     j << (k ? ", " : "") << "\n    \"" << names[k] << "\": " << s.pipeline.stage_seconds()[k];
-  j << "\n  }\n}\n";
+  j << "\n  }";
+  // Figures some stages keep (the ARKODE driver: steps, rejections, evaluations).
+  bool details = false;
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string d = s.pipeline.stages()[k]->summary_json();
+    if (d.empty()) continue;
+    j << (details ? ",\n    \"" : ",\n  \"stage_details\": {\n    \"") << names[k] << "\": {" << d << "}";
+    details = true;
+  }
+  if (details) j << "\n  }";
+  j << "\n}\n";
   if (!j) throw std::runtime_error("could not write '" + (opt.out_dir / "summary.json").string() + "'");
   return r;
 }

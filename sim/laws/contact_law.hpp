@@ -58,6 +58,29 @@ struct ContactLaw {
     (void)hist;
     return out;
   }
+
+  /// For integrators that carry the history in their ODE state
+  /// (integrate/arkode.hpp): the force of the history state `hist`, which is
+  /// projected in place as evaluate() does with dt = 0 (tangent plane,
+  /// Coulomb and rolling limits), and d(hist)/dt into `rate` (history_size
+  /// doubles): the tangential relative velocity for the spring, -k_r w_r for
+  /// the rolling torque.
+  static GRAINS_INLINE Result evaluate_rate(const contact::ContactGeometry& g, const Eigen::Vector3d& v_rel,
+                                     const Eigen::Vector3d& w_rel, double m, const PairParams& p, double* hist,
+                                     double* rate) {
+    const Result out = evaluate(g, v_rel, w_rel, m, p, 0.0, hist);
+    if constexpr (history_size > 0) {
+      const Eigen::Vector3d& n = g.normal;
+      const double vn = v_rel.dot(n);
+      if constexpr (T::history_size > 0) T::rate(v_rel - n * vn, rate);
+      if constexpr (R::history_size > 0) {
+        const NormalState ns = HertzNormal::evaluate(g.overlap, -vn, g.radius, m, p);
+        R::rate(n, w_rel, ns, g.radius, p, rate + T::history_size);
+      }
+    }
+    (void)rate;
+    return out;
+  }
 };
 
 }  // namespace grains::sim

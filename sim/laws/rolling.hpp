@@ -24,6 +24,8 @@ struct NoRolling {
                                        const PairParams&, double, double*) {
     return Eigen::Vector3d::Zero();
   }
+  static GRAINS_INLINE void rate(const Eigen::Vector3d&, const Eigen::Vector3d&, const NormalState&, double,
+                                 const PairParams&, double*) {}
 };
 
 struct EpsdRolling {
@@ -42,12 +44,24 @@ struct EpsdRolling {
       if (l2 > 0) mr *= std::sqrt(len2 / l2);
     }
     const Eigen::Vector3d wr = w_rel - n * n.dot(w_rel);
-    const double kr = 2.25 * ns.stiffness * p.rolling_friction * p.rolling_friction * R * R;
-    mr -= kr * dt * wr;
+    mr -= stiffness(ns, R, p) * dt * wr;
     const double limit = p.rolling_friction * R * ns.force;
     const double m2 = mr.squaredNorm();
     if (m2 > limit * limit && m2 > 0) mr *= limit / std::sqrt(m2);
     return mr;
+  }
+  /// Rolling stiffness k_r = 2.25 S_n mu_r^2 R*^2.
+  static GRAINS_INLINE double stiffness(const NormalState& ns, double R, const PairParams& p) {
+    return 2.25 * ns.stiffness * p.rolling_friction * p.rolling_friction * R * R;
+  }
+  /// d m_r/dt = -k_r w_r (w_r: w_rel in the tangent plane), for integrators
+  /// that carry the torque in their ODE state (integrate/arkode.hpp);
+  /// torque() with dt = 0 then projects it (length kept, limit).
+  static GRAINS_INLINE void rate(const Eigen::Vector3d& n, const Eigen::Vector3d& w_rel, const NormalState& ns,
+                                 double R, const PairParams& p, double* out) {
+    const Eigen::Vector3d wr = w_rel - n * n.dot(w_rel);
+    Eigen::Map<Eigen::Vector3d> r(out);
+    r = -stiffness(ns, R, p) * wr;
   }
 };
 

@@ -25,6 +25,7 @@ struct NoTangential {
                                       double, const PairParams&, double, double*) {
     return Eigen::Vector3d::Zero();
   }
+  static GRAINS_INLINE void rate(const Eigen::Vector3d&, double*) {}
 };
 
 struct MindlinTangential {
@@ -53,6 +54,13 @@ struct MindlinTangential {
       }
     }
     return ft;
+  }
+  /// d xi/dt = v_t, for integrators that carry the spring in their ODE state
+  /// (integrate/arkode.hpp). force() with dt = 0 then gives the force of that
+  /// state and projects it (tangent plane, Coulomb limit).
+  static GRAINS_INLINE void rate(const Eigen::Vector3d& vt, double* out) {
+    Eigen::Map<Eigen::Vector3d> r(out);
+    r = vt;
   }
 };
 

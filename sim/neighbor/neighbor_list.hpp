@@ -34,6 +34,9 @@ class NeighborList {
 
   /// True when the list no longer covers every pair that may touch.
   bool needs_rebuild(const ParticleStore& p, const Walls& walls, double time) const;
+  /// Makes the next needs_rebuild() true: for an integrator that knows its
+  /// coming steps may move particles further than the skin allows.
+  void invalidate() { x_build_.clear(); }
 
   /// Rebuilds rows, re-sorts particles by cell for locality (when sort is
   /// true; only without ghosts) and carries the contact history over. lo/hi

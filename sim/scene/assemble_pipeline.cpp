@@ -1,7 +1,12 @@
 // Assembles the step pipeline from what the scene needs. The law slots are
 // chosen here once, at run time, and each choice is a separate template
 // instantiation, so the per-contact kernels carry no flags.
+#include <algorithm>
+#include <cmath>
+
+#include "sim/integrate/arkode.hpp"
 #include "sim/integrate/clump_bodies.hpp"
+#include "sim/integrate/history_state_law.hpp"
 #include "sim/integrate/rigid_body.hpp"
 #include "sim/integrate/verlet.hpp"
 #include "sim/laws/ellipsoid_pair_stage.hpp"
@@ -28,12 +33,23 @@ void add_contact_stages(Pipeline& p, const SceneNeeds& n) {
   if (n.cylinders) p.add(std::make_unique<CylinderWallStage<Law>>());
 }
 
+// With ARKODE the law's history is part of the ODE state (laws with history only).
+template <class Law>
+void add_law(Pipeline& p, const SceneNeeds& n) {
+  if constexpr (Law::history_size > 0)
+    if (n.history_in_state) {
+      add_contact_stages<HistoryInState<Law>>(p, n);
+      return;
+    }
+  add_contact_stages<Law>(p, n);
+}
+
 template <class T, class R>
 void dispatch_cohesion(Pipeline& p, const SceneNeeds& n) {
   if (n.cohesion)
-    add_contact_stages<ContactLaw<T, R, SjkrCohesion>>(p, n);
+    add_law<ContactLaw<T, R, SjkrCohesion>>(p, n);
   else
-    add_contact_stages<ContactLaw<T, R, NoCohesion>>(p, n);
+    add_law<ContactLaw<T, R, NoCohesion>>(p, n);
 }
 
 template <class T>
@@ -77,16 +93,56 @@ void add_integrators(Pipeline& p, const SceneNeeds& n) {
   }
 }
 
+// ARKODE (integrate/arkode.hpp): one driver stage that moves particles,
+// bodies and walls and runs the neighbour and force phases itself; the force
+// phase starts as for Verlet (clear forces, gravity).
+void add_arkode(Pipeline& p, const Scene& s, const SceneConfig& c, const SceneNeeds& n) {
+  ArkodeLayout layout;
+  layout.rigid = n.ellipsoids;
+  layout.rotation = n.rotation && !n.ellipsoids;
+  layout.clumps = n.clumps;
+  layout.tangential_history = n.tangential ? 3 : 0;
+  layout.rolling_history = n.rolling ? 3 : 0;
+  layout.pw85_slot = n.ellipsoids;
+  ArkodeScales scales;
+  const auto& r = s.particles.radius;
+  if (!r.empty()) scales.length = *std::min_element(r.begin(), r.end());
+  const auto& m = s.particles.mass;
+  if (!m.empty()) scales.mass = *std::min_element(m.begin(), m.end());
+  // The scene's speed, as the blow-up check estimates it: the fastest initial
+  // speed, the fall through the domain and the fastest wall; a scene where
+  // nothing moves takes the speed of a radius per Rayleigh time.
+  double v0 = 0;
+  for (std::size_t i = 0; i < s.particles.n_owned(); ++i) v0 = std::max(v0, s.particles.v[i].norm());
+  scales.speed = v0 + std::sqrt(2 * s.gravity.norm() * (s.domain.hi - s.domain.lo).norm()) + s.walls.max_displacement(1.0);
+  if (!(scales.speed > 0)) {
+    const double tr = rayleigh_time(c);
+    scales.speed = std::isfinite(tr) && tr > 0 ? scales.length / tr : 1.0;
+  }
+  p.add(make_arkode_integrator(c.arkode, layout, scales, c.integrator_where));
+  const bool rot = n.rotation || n.ellipsoids;
+  if (rot && n.clumps)
+    add_clear<true, true>(p, n.gravity);
+  else if (rot)
+    add_clear<true, false>(p, n.gravity);
+  else if (n.clumps)
+    add_clear<false, true>(p, n.gravity);
+  else
+    add_clear<false, false>(p, n.gravity);
+}
+
 }  // namespace
 
 Pipeline assemble_pipeline(const Scene& s, const SceneConfig& c) {
   const SceneNeeds n = scene_needs(c, s.pairs);
   Pipeline p;
-  if (n.clumps)
+  if (c.integrator == Integrator::Arkode)
+    add_arkode(p, s, c, n);
+  else if (n.clumps)
     add_integrators<true>(p, n);
   else
     add_integrators<false>(p, n);
-  if (n.moving_walls) p.add(std::make_unique<MoveWalls>());
+  if (n.moving_walls && c.integrator == Integrator::Verlet) p.add(std::make_unique<MoveWalls>());
   p.add(std::make_unique<NeighborStage>(c.sort_particles));
   if (n.tangential)
     dispatch_rolling<MindlinTangential>(p, n);

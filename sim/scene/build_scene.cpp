@@ -70,6 +70,10 @@ SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs) {
   n.cylinders = !c.walls.cylinders.empty();
   n.moving_walls = c.walls.max_displacement(1.0) > 0;
   n.history_size = (n.tangential ? 3 : 0) + (n.rolling ? 3 : 0);
+  if (c.integrator == Integrator::Arkode && n.history_size > 0) {
+    n.history_in_state = true;
+    n.history_size *= 2;
+  }
   if (n.rotation) n.fields |= FieldSet(Field::AngularVelocity) | Field::Torque | Field::Inertia;
   if (n.history_size > 0 && c.walls.count() > 0) n.fields |= Field::WallHistory;
   if (n.ellipsoids)
@@ -115,13 +119,15 @@ Scene build_scene(SceneConfig& c) {
     c.dt = c.dt_rayleigh * tr;
   } else if (std::isfinite(tr)) {
     const double frac = c.dt / tr;
-    if (frac > 1.0) {
+    // (ARKODE adapts its steps to the contacts; dt only bounds them.)
+    if (frac > 1.0 && c.integrator == Integrator::Verlet) {
       msg << c.dt_where << ": time step dt = " << c.dt << " s is " << frac
           << " Rayleigh times (T_R = " << tr << " s); above 1 the contacts are unresolved and the run would blow up."
           << " Use dt <= " << 0.3 * tr << " s (0.3 T_R) or give time.dt_rayleigh instead";
       throw SetupError(msg.str());
     }
-    if (frac > 0.3) {
+    // (ARKODE controls its own steps; dt only bounds them.)
+    if (frac > 0.3 && c.integrator == Integrator::Verlet) {
       msg << c.dt_where << ": warning: time step dt = " << c.dt << " s is " << frac
           << " Rayleigh times (T_R = " << tr << " s); above 0.3 the accuracy of contacts suffers";
       c.warnings.push_back(msg.str());

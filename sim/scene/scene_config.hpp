@@ -84,6 +84,19 @@ struct ParticleSetConfig {
 
 enum class SlotChoice { Auto, None, On };
 
+/// The time integrator (case file: time.integrator).
+enum class Integrator {
+  Verlet,  // velocity Verlet, fixed step dt
+  Arkode,  // SUNDIALS ARKODE explicit adaptive Runge-Kutta (sim/integrate/arkode.hpp); dt is the largest step
+};
+
+/// Options of the ARKODE integrator (case file: time.rtol, time.atol, time.order).
+struct ArkodeConfig {
+  double rtol = 1e-6;  // relative tolerance
+  double atol = 1e-6;  // absolute tolerance in the scene's units (smallest radius, scene speed)
+  int order = 4;       // order of the embedded ERK pair (2..8; ARKODE's default tables)
+};
+
 /// Threads and MPI ranks (`parallel:` in the case file).
 struct ParallelConfig {
   bool deterministic = false;        // ordered force sums even with one thread
@@ -104,6 +117,9 @@ struct SceneConfig {
   double dt_rayleigh = 0;  // fraction of the Rayleigh time, or 0
   std::string dt_where;
   double end_time = 0;
+  Integrator integrator = Integrator::Verlet;
+  ArkodeConfig arkode;
+  std::string integrator_where;  // file:line:column of time.integrator
   double skin = 0.1;       // neighbour skin as a fraction of the largest diameter
   bool sort_particles = true;
   ParallelConfig parallel;

@@ -93,14 +93,25 @@ std::vector<EffectDoc> scene_docs() {
                {key("type", K::String, "placement kind").req().one_of({"random_fill", "lattice", "file"}),
                 key("path", K::String, "file path, relative to the case file").req(),
                 key("seed", K::Integer, "random seed for radii from a distribution").def("1").in(0, 1.8e19)}});
-  d.push_back({"time", "time: {...}", "Time stepping (velocity Verlet).",
+  d.push_back({"time", "time: {...}",
+               "Time stepping: velocity Verlet with the fixed step dt, or SUNDIALS ARKODE (explicit adaptive "
+               "Runge-Kutta, ERKStep) with error control, whose steps never exceed dt (outputs, neighbour "
+               "checks and the step counter keep the cadence of dt). docs/integrators.md explains both.",
                {key("end", K::Number, "simulated end time").req().si("s").in(0, inf, true),
-                key("dt", K::Number, "time step (give dt or dt_rayleigh)").si("s").in(0, inf, true),
+                key("dt", K::Number, "time step (give dt or dt_rayleigh); arkode: the largest step").si("s").in(0, inf, true),
                 key("dt_rayleigh", K::Number,
-                    "time step as a fraction of the Rayleigh time of the smallest particle; warned above 0.3, "
-                    "refused above 1")
+                    "time step as a fraction of the Rayleigh time of the smallest particle; warned above 0.3 "
+                    "(verlet), refused above 1")
                     .in(0, 1, true, false),
-                key("integrator", K::String, "time integrator").def("verlet").one_of({"verlet"})}});
+                key("integrator", K::String, "time integrator").def("verlet").one_of({"verlet", "arkode"}),
+                key("rtol", K::Number, "arkode: relative tolerance of the local error").def("1e-6").in(0, 1, true, true),
+                key("atol", K::Number,
+                    "arkode: absolute tolerance in scene units: positions atol r, velocities atol V, angular "
+                    "velocities atol V/r, quaternions atol, angular momenta atol I V/r (r the smallest radius, V "
+                    "the fastest initial speed + free fall through the domain + fastest wall)")
+                    .def("1e-6").in(0, 1, true, true),
+                key("order", K::Integer, "arkode: order of the embedded Runge-Kutta pair (2, 3, 4, 5, 6 or 8)")
+                    .def("4").in(2, 8)}});
   d.push_back({"neighbor", "neighbor: {...}",
                "Linked-cell Verlet lists, rebuilt when a particle has moved half the skin.",
                {key("skin", K::Number, "skin as a fraction of the largest particle diameter").def("0.1").in(0, 10, true),

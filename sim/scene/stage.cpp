@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
 
 namespace grains::sim {
 
@@ -22,12 +23,27 @@ void Pipeline::add(std::unique_ptr<Stage> s) {
   auto it = std::find_if(stages_.begin(), stages_.end(), [ph](const auto& t) { return t->phase() > ph; });
   stages_.insert(it, std::move(s));
   seconds_.assign(stages_.size(), 0.0);
+  driver_ = -1;
+  for (std::size_t k = 0; k < stages_.size(); ++k)
+    if (stages_[k]->is_driver()) {
+      if (driver_ >= 0) throw std::logic_error("a pipeline takes one driver stage");
+      driver_ = static_cast<int>(k);
+    }
 }
 
 void Pipeline::run_timed(std::size_t k, Scene& s) {
+  // Exclusive times: what a stage spends in stages it runs itself (a driver
+  // evaluating the force phase) is booked to those stages only.
+  const double outer = nested_;
+  nested_ = 0;
   const auto t0 = std::chrono::steady_clock::now();
-  stages_[k]->run(s);
-  seconds_[k] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (static_cast<int>(k) == driver_)
+    stages_[k]->drive(s, *this);
+  else
+    stages_[k]->run(s);
+  const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  seconds_[k] += dt - nested_;
+  nested_ = outer + dt;
 }
 
 void Pipeline::run_phase(Scene& s, Phase p) {
@@ -36,12 +52,21 @@ void Pipeline::run_phase(Scene& s, Phase p) {
 }
 
 void Pipeline::initialize(Scene& s) {
+  // The forces at t0 only: no time passes, so the contact history (springs of
+  // pairs touching at t0) must not advance; the first step advances it.
+  const double dt = s.clock.dt;
+  s.clock.dt = 0;
   run_phase(s, Phase::Neighbor);
   run_phase(s, Phase::Force);
+  s.clock.dt = dt;
 }
 
 void Pipeline::step(Scene& s) {
   std::size_t k = 0;
+  if (driver_ >= 0) {
+    run_timed(static_cast<std::size_t>(driver_), s);
+    while (k < stages_.size() && stages_[k]->phase() != Phase::Output) ++k;
+  }
   for (; k < stages_.size() && stages_[k]->phase() != Phase::Output; ++k) run_timed(k, s);
   s.clock.step += 1;
   s.clock.time = static_cast<double>(s.clock.step) * s.clock.dt;

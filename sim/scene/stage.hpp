@@ -9,6 +9,8 @@
 
 namespace grains::sim {
 
+class Pipeline;
+
 enum class Phase {
   Drift,     // first half kick + drift, wall motion
   Neighbor,  // neighbour list upkeep
@@ -27,26 +29,42 @@ class Stage {
   virtual void run(Scene& s) = 0;
   /// Called once after the last step (writers flush, summaries).
   virtual void finish(Scene&) {}
+  /// A driver is an integrator that evaluates the neighbour and force phases
+  /// itself, as often as it needs (an adaptive Runge-Kutta method evaluates
+  /// the forces at its trial states). It sits in the drift phase; the
+  /// pipeline calls drive() instead of run(), and step() then runs no other
+  /// phase before the output phase.
+  virtual bool is_driver() const { return false; }
+  virtual void drive(Scene& s, Pipeline&) { run(s); }
+  /// Extra figures for summary.json, as the members of a JSON object
+  /// ("\"key\": value, ..."); empty when the stage has none.
+  virtual std::string summary_json() const { return {}; }
 };
 
 class Pipeline {
  public:
   void add(std::unique_ptr<Stage> s);
-  /// Neighbour and force phases once, so that the first kick sees f(t0).
+  /// Neighbour and force phases once, so that the first kick sees f(t0)
+  /// (with clock.dt = 0 meanwhile: the contact history does not advance).
   void initialize(Scene& s);
-  /// One time step: drift, neighbour, force, kick, clock, output.
+  /// One time step: drift, neighbour, force, kick, clock, output. With a
+  /// driver stage: the driver (which runs the other phases itself), clock, output.
   void step(Scene& s);
+  /// Runs the stages of one phase (timed), e.g. the force phase at a driver's trial state.
+  void run_phase(Scene& s, Phase p);
   void finish(Scene& s);
   std::vector<std::string> stage_names() const;
   const std::vector<std::unique_ptr<Stage>>& stages() const { return stages_; }
   /// Wall-clock seconds spent in each stage so far (same order as stages()).
+  /// Exclusive: a driver's time does not include the stages it ran.
   const std::vector<double>& stage_seconds() const { return seconds_; }
 
  private:
-  void run_phase(Scene& s, Phase p);
   void run_timed(std::size_t k, Scene& s);
   std::vector<std::unique_ptr<Stage>> stages_;
   std::vector<double> seconds_;
+  double nested_ = 0;  // seconds of the stages run inside the current one
+  int driver_ = -1;    // index of the driver stage, or -1
 };
 
 }  // namespace grains::sim
