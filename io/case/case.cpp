@@ -29,7 +29,19 @@ void register_io_docs() {
           sim::key("vtk", K::Bool, "write VTK frames").def("true"),
           sim::key("progress", K::Bool, "print a progress line to stderr (also -q)").def("true"),
           sim::key("progress_interval", K::Number, "wall-clock time between progress lines").def("2").si("s").in(0, inf),
-          sim::key("solid_fraction", K::Map, "solid-fraction field as VTK image data (see output.solid_fraction)")}});
+          sim::key("solid_fraction", K::Map, "solid-fraction field as VTK image data (see output.solid_fraction)"),
+          sim::key("mass", K::Map, "grains and their mass against time in mass.csv, e.g. silo discharge (see output.mass)")}});
+    sim::register_effect_doc(
+        {"output.mass", "output: {mass: {...}}",
+         "One row per interval in OUTDIR/mass.csv: step, time_s, grains and mass_kg (spheres, ellipsoids, whole "
+         "clumps by their centre of mass) on the front side of a plane (the whole domain without one), and "
+         "lost_particles, removed so far because they left the domain. With the plane through a silo's orifice, "
+         "the discharge rate is minus the slope of mass_kg against time.",
+         {sim::key("every", K::Number, "simulated time between rows; default the VTK frame cadence")
+              .si("s").in(0, inf, true),
+          sim::key("every_steps", K::Integer, "steps between rows (instead of every)").in(1, 1e15),
+          sim::key("point", K::Vec3, "a point on the counting plane (give with normal)").si("m"),
+          sim::key("normal", K::Vec3, "the plane's normal; grains on this side count (normalised for you)")}});
     sim::register_effect_doc(
         {"output.solid_fraction", "output: {solid_fraction: {...}}",
          "The coarse-grained solid fraction on a regular grid over the domain (NUFFT of the particles, a Gaussian "
@@ -504,6 +516,10 @@ class CaseParser {
           p.normal = Vec3(0, 0, 1);
         }
         p.normal.normalize();
+        p.hole_radius = v_.number(w, d, "hole_radius", ctx, 0);
+        p.radius = v_.number(w, d, "radius", ctx, std::numeric_limits<double>::infinity());
+        if (w["radius"] && p.radius <= p.hole_radius)
+          v_.error(w["radius"], ctx, "radius must be larger than hole_radius (" + std::to_string(p.hole_radius) + " m)");
         c_.scene.walls.planes.push_back(p);
       } else {
         sim::CylinderWall c;
@@ -575,6 +591,29 @@ class CaseParser {
         if (sf["every"] && sf["every_steps"]) v_.error(sf["every_steps"], ctx, "give either every or every_steps, not both");
         c.every = v_.number(sf, sd, "every", ctx, 0);
         c.every_steps = v_.integer(sf, sd, "every_steps", ctx, 0);
+      }
+    }
+    if (const YAML::Node m = n["mass"]) {
+      const auto& md = doc("output.mass");
+      const std::string ctx = "output.mass";
+      if (v_.check_map(m, md, ctx)) {
+        auto& c = o.mass;
+        c.enabled = true;
+        if (m["every"] && m["every_steps"]) v_.error(m["every_steps"], ctx, "give either every or every_steps, not both");
+        c.every = v_.number(m, md, "every", ctx, 0);
+        c.every_steps = v_.integer(m, md, "every_steps", ctx, 0);
+        if (static_cast<bool>(m["point"]) != static_cast<bool>(m["normal"])) {
+          v_.error(m, ctx, "give both point and normal of the counting plane, or neither");
+        } else if (m["point"]) {
+          c.has_plane = true;
+          c.point = v_.vec3(m, md, "point", ctx);
+          c.normal = v_.vec3(m, md, "normal", ctx, Vec3(0, 0, 1));
+          if (c.normal.norm() == 0) {
+            v_.error(m["normal"], ctx, "normal must not be the zero vector");
+            c.normal = Vec3(0, 0, 1);
+          }
+          c.normal.normalize();
+        }
       }
     }
   }

@@ -13,6 +13,7 @@
 
 #include <omp.h>
 
+#include "io/output/mass_output.hpp"
 #include "io/output/progress.hpp"
 #include "sim/neighbor/neighbor_stage.hpp"
 #include "sim/parallel/comm.hpp"
@@ -156,6 +157,12 @@ void add_output_stages(Simulation& s, const RunOptions& opt) {
                                                   : frame_steps(o, s.scene.clock.dt);
     s.pipeline.add(std::make_unique<SolidFractionOutput>(opt.out_dir, sf, every));
   }
+  if (o.mass.enabled) {
+    const std::int64_t every = o.mass.every_steps > 0 ? o.mass.every_steps
+                               : o.mass.every > 0    ? std::max<std::int64_t>(1, std::llround(o.mass.every / s.scene.clock.dt))
+                                                     : frame_steps(o, s.scene.clock.dt);
+    s.pipeline.add(std::make_unique<MassOutput>(opt.out_dir, o.mass, every));
+  }
   if (o.progress && !opt.quiet) s.pipeline.add(std::make_unique<Progress>(*opt.log, o.progress_interval));
   // Last of the output phase: a checkpoint holds the frames of its own step.
   CheckpointExtras info{s.c.path, s.c.text, effective_case(s.c), {}, {}};
@@ -201,6 +208,7 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
       if (talk) *opt.log << "removed " << name << " (after the restart point)\n";
     ck->restarted_from(opt.restart, s.scene.clock.step);
     if (vtk) vtk->resume(s.scene, x.frame_times, x.frame_steps);
+    if (auto* m = find_stage<MassOutput>(s)) m->resume(s.scene);
     r.restarted_from = opt.restart.string();
     if (talk)
       *opt.log << "restarting from " << opt.restart.string() << " at step " << s.scene.clock.step << " (t = "
@@ -209,6 +217,7 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
     s.pipeline.initialize(s.scene);
     if (vtk) vtk->write_frame(s.scene);
     if (auto* sf = find_stage<SolidFractionOutput>(s)) sf->write_frame(s.scene);
+    if (auto* m = find_stage<MassOutput>(s)) m->write_row(s.scene);
   }
   r.particles_start = s.scene.particles.n_owned();
   double particle_steps = 0;

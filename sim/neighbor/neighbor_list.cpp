@@ -166,6 +166,15 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   cylinder_near.assign(walls.cylinders.size(), {});
   for (std::size_t w = 0; w < walls.planes.size(); ++w) {
     const auto& wall = walls.planes[w];
+    if (wall.finite()) {  // a disc or annulus, touched from both sides and on its rims
+      const auto a = wall.annulus();
+      for (std::size_t i = 0; i < n_own; ++i) {
+        const double reach = p.radius[i] + skin_;
+        if ((p.x[i] - contact::annulus_nearest(p.x[i], a)).squaredNorm() < reach * reach)
+          plane_near[w].push_back(static_cast<std::uint32_t>(i));
+      }
+      continue;
+    }
     for (std::size_t i = 0; i < n_own; ++i)
       if (contact::plane_distance(p.x[i], wall.point, wall.normal) < p.radius[i] + skin_)
         plane_near[w].push_back(static_cast<std::uint32_t>(i));

@@ -171,6 +171,11 @@ Scene build_scene(SceneConfig& c) {
     }
   }
   if (need.ellipsoids)
+    for (const auto& w : s.walls.planes)
+      if (w.finite())
+        throw SetupError("wall '" + w.name + "': ellipsoids against a finite plane (hole_radius or radius) are not "
+                         "supported; use an infinite plane or spheres");
+  if (need.ellipsoids)
     for (const auto& w : s.walls.cylinders)
       if (!w.surface.inside)
         throw SetupError("wall '" + w.name + "': ellipsoids against the outside of a cylinder are not supported; "
