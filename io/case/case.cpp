@@ -86,6 +86,7 @@ class CaseParser {
     parse_time(root["time"]);
     parse_neighbor(root["neighbor"]);
     parse_parallel(root["parallel"]);
+    parse_growth(root["radius_growth"]);
     parse_output(root["output"]);
     parse_checkpoint(root["checkpoint"]);
   }
@@ -566,6 +567,18 @@ class CaseParser {
     c_.scene.skin = v_.number(n, d, "skin", "neighbor", 0.1);
     c_.scene.sort_particles = v_.boolean(n, d, "sort", "neighbor", true);
     c_.scene.overlap_tolerance = v_.number(n, d, "overlap_tolerance", "neighbor", 0.01);
+  }
+
+  void parse_growth(const YAML::Node& n) {
+    if (!n) return;
+    const auto& d = doc("radius_growth");
+    if (!v_.check_map(n, d, "radius_growth")) return;
+    auto& g = c_.scene.growth;
+    g.enabled = true;
+    g.rate = v_.number(n, d, "rate", "radius_growth", 1);
+    g.target_overlap = v_.number(n, d, "target_overlap", "radius_growth", 1e-4);
+    g.every_steps = v_.integer(n, d, "every_steps", "radius_growth", 10);
+    c_.scene.growth_where = v_.where(n);
   }
 
   void parse_output(const YAML::Node& n) {

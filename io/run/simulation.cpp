@@ -141,7 +141,10 @@ void probe_output_dir(const std::filesystem::path& dir) {
 
 void add_output_stages(Simulation& s, const RunOptions& opt) {
   const auto& o = s.c.output;
-  auto blow = std::make_unique<BlowUpCheck>(s.scene, s.rayleigh_time);
+  // Growing radii push grains apart at up to the growth rate times the domain size.
+  const double growth_speed =
+      s.c.scene.growth.enabled ? s.c.scene.growth.rate * (s.scene.domain.hi - s.scene.domain.lo).norm() : 0.0;
+  auto blow = std::make_unique<BlowUpCheck>(s.scene, s.rayleigh_time, 200, growth_speed);
   BlowUpCheck* blow_up = blow.get();
   s.pipeline.add(std::move(blow));
   VtkOutput* vtk = nullptr;

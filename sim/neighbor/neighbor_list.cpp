@@ -68,7 +68,7 @@ bool NeighborList::needs_rebuild(const ParticleStore& p, const Walls& walls, dou
   if (x_build_.size() != n) return true;
   double m2 = 0;
   for (std::size_t i = 0; i < n; ++i) m2 = std::max(m2, (p.x[i] - x_build_[i]).squaredNorm());
-  const double m = std::sqrt(m2);
+  const double m = std::sqrt(m2) + growth_;
   return 2 * m > skin_ || m + walls.max_displacement(time - build_time_) > skin_;
 }
 
@@ -192,6 +192,7 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   x_build_.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(n_own));
   build_time_ = time;
   build_id_.assign(p.id.begin(), p.id.begin() + static_cast<std::ptrdiff_t>(n));
+  growth_ = 0;
   ++stats_.builds;
   stats_.pairs = partner.size();
 }

@@ -2,6 +2,7 @@
 // chosen here once, at run time, and each choice is a separate template
 // instantiation, so the per-contact kernels carry no flags.
 #include "sim/integrate/clump_bodies.hpp"
+#include "sim/integrate/radius_growth.hpp"
 #include "sim/integrate/rigid_body.hpp"
 #include "sim/integrate/verlet.hpp"
 #include "sim/laws/ellipsoid_pair_stage.hpp"
@@ -87,6 +88,7 @@ Pipeline assemble_pipeline(const Scene& s, const SceneConfig& c) {
   else
     add_integrators<false>(p, n);
   if (n.moving_walls) p.add(std::make_unique<MoveWalls>());
+  if (c.growth.enabled) p.add(std::make_unique<RadiusGrowth>(c.growth));
   p.add(std::make_unique<NeighborStage>(c.sort_particles));
   if (n.tangential)
     dispatch_rolling<MindlinTangential>(p, n);

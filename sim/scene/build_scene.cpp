@@ -170,6 +170,9 @@ Scene build_scene(SceneConfig& c) {
       }
     }
   }
+  if (c.growth.enabled && (need.ellipsoids || need.clumps))
+    throw SetupError(c.growth_where + ": radius_growth grows spheres only; this scene has " +
+                     (need.ellipsoids ? "ellipsoids" : "clumps"));
   if (need.ellipsoids)
     for (const auto& w : s.walls.planes)
       if (w.finite())

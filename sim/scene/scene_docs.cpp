@@ -27,7 +27,20 @@ std::vector<EffectDoc> scene_docs() {
                 key("neighbor", K::Map, "neighbour lists (see neighbor)"),
                 key("parallel", K::Map, "threads and MPI ranks (see parallel)"),
                 key("output", K::Map, "output (see output)"),
-                key("checkpoint", K::Map, "HDF5 checkpoints for restart (see checkpoint)")}});
+                key("checkpoint", K::Map, "HDF5 checkpoints for restart (see checkpoint)"),
+                key("radius_growth", K::Map, "isotropic compression by growing radii (see radius_growth)")}});
+  d.push_back({"radius_growth", "radius_growth: {...}",
+               "Isotropic compression by growing radii (a jamming protocol): each step every radius is multiplied "
+               "by exp(g dt), g = rate * clamp(1 - o/target_overlap, -1, 1), where the overlap per particle o is the "
+               "sum over touching pairs of delta/(r_i + r_j) divided by the number of particles (about Z/2 times the "
+               "mean relative overlap of a contact: zero while the packing is loose). The packing grows at `rate` "
+               "until contacts carry load and settles at o = target_overlap (radii shrink back if compressed "
+               "beyond it). Masses keep the density (m ~ r^3), so the time step of the initial radii stays safe. "
+               "Spheres only.",
+               {key("rate", K::Number, "largest relative growth rate d ln r/dt").req().si("1/s").in(0, inf, true),
+                key("target_overlap", K::Number, "overlap per particle o at which growth stops (e.g. 3e-4)")
+                    .req().in(0, 0.1, true),
+                key("every_steps", K::Integer, "steps between measurements of o").def("10").in(1, 1e9)}});
   d.push_back({"domain", "domain: {...}",
                "The box particles live in; a particle that leaves it through a non-periodic face is removed and "
                "counted in the summary. Through a periodic face it comes back at the opposite one, and contacts "
