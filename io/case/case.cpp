@@ -578,6 +578,7 @@ class CaseParser {
     g.rate = v_.number(n, d, "rate", "radius_growth", 1);
     g.target_overlap = v_.number(n, d, "target_overlap", "radius_growth", 1e-4);
     g.every_steps = v_.integer(n, d, "every_steps", "radius_growth", 10);
+    g.max_scale = v_.number(n, d, "max_scale", "radius_growth", 2);
     c_.scene.growth_where = v_.where(n);
   }
 

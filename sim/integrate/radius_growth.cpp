@@ -3,27 +3,38 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/parallel/exchange.hpp"
+
 namespace grains::sim {
 
 double RadiusGrowth::overlap_per_particle(const Scene& s) {
   const auto& p = s.particles;
   const auto& nl = s.neighbors;
   const std::size_t n = p.n_owned();
-  if (n == 0 || nl.row_start.size() < n + 1) return 0;
+  const std::size_t rows = nl.row_start.empty() ? 0 : nl.row_start.size() - 1;
+  // A pair with a ghost (periodic image, other rank) is seen from both of
+  // its particles' owners: half each, so every physical pair counts once.
   double sum = 0;
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < rows; ++i)
     for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
       const auto j = nl.partner[k];
       const double rs = p.radius[i] + p.radius[j];
       const double d2 = (p.x[i] - p.x[j]).squaredNorm();
-      if (d2 < rs * rs) sum += 1.0 - std::sqrt(d2) / rs;
+      if (d2 < rs * rs) sum += (i < n && j < n ? 1.0 : 0.5) * (1.0 - std::sqrt(d2) / rs);
     }
-  return sum / static_cast<double>(n);
+  double count = static_cast<double>(n);
+  if (s.exchange) {
+    sum = s.exchange->comm().sum(sum);
+    count = s.exchange->comm().sum(count);
+  }
+  return count > 0 ? sum / count : 0.0;
 }
 
 void RadiusGrowth::run(Scene& s) {
+  auto& p = s.particles;
   // The growth since the list's last build is not known after a restart:
-  // rebuild once before the first growth.
+  // rebuild once before the first growth. Radii are measured against the
+  // smallest radius at the start (a restart continues from the grown radii).
   if (!started_) {
     s.neighbors.add_growth(s.neighbors.skin());
     started_ = true;
@@ -32,9 +43,18 @@ void RadiusGrowth::run(Scene& s) {
     overlap_ = overlap_per_particle(s);
     rate_ = c_.rate * std::clamp(1.0 - overlap_ / c_.target_overlap, -1.0, 1.0);
   }
-  if (rate_ == 0) return;
-  auto& p = s.particles;
-  const double f = std::exp(rate_ * s.clock.dt), f3 = f * f * f;
+  double f = std::exp(rate_ * s.clock.dt);
+  // Growth stops at max_scale times the initial radii (the ghost cut-off of
+  // periodic and parallel runs was sized for it).
+  if (f > 1 && c_.max_scale > 0 && c_.initial_radius > 0 && p.n_owned() > 0) {
+    double rmin = p.radius[0];
+    for (std::size_t i = 1; i < p.n_owned(); ++i) rmin = std::min(rmin, p.radius[i]);
+    if (s.exchange) rmin = s.exchange->comm().min(rmin);
+    f = std::min(f, c_.max_scale * c_.initial_radius / rmin);
+    capped_ = f <= 1;
+  }
+  if (f == 1) return;
+  const double f3 = f * f * f;
   double rmax = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {  // ghosts too: they are copies
     p.radius[i] *= f;

@@ -16,8 +16,10 @@
 // so the Rayleigh time grows with the radius and the time step chosen for
 // the initial radii stays safe. The neighbour list's per-pair constants are
 // refreshed after each growth, and its rebuild trigger includes the growth
-// since the last build (NeighborList::add_growth). Spheres only (set-up
-// refuses ellipsoids and clumps). Case-file keys: radius_growth.
+// since the last build (NeighborList::add_growth). Radii grow to at most
+// max_scale times the smallest initial radius (the ghost cut-off of periodic
+// and parallel runs is sized for it). Spheres only (set-up refuses
+// ellipsoids and clumps). Case-file keys: radius_growth.
 #include <cstdint>
 #include <string>
 
@@ -30,6 +32,8 @@ struct RadiusGrowthConfig {
   double rate = 0;              // 1/s: largest relative growth rate d ln r / dt
   double target_overlap = 0;    // overlap per particle o at which growth stops
   std::int64_t every_steps = 10;  // steps between measurements of o
+  double max_scale = 2;         // radii grow to at most this times initial_radius
+  double initial_radius = 0;    // the smallest radius of the case (set at set-up)
 };
 
 class RadiusGrowth final : public Stage {
@@ -45,11 +49,13 @@ class RadiusGrowth final : public Stage {
   double growth_rate() const { return rate_; }
   const RadiusGrowthConfig& config() const { return c_; }
   void set_target_overlap(double t) { c_.target_overlap = t; }
+  /// True once growth stopped at max_scale (the packing did not jam before).
+  bool capped() const { return capped_; }
 
  private:
   RadiusGrowthConfig c_;
   double overlap_ = 0, rate_ = 0;
-  bool started_ = false;
+  bool started_ = false, capped_ = false;
 };
 
 }  // namespace grains::sim

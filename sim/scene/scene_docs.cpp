@@ -40,7 +40,10 @@ std::vector<EffectDoc> scene_docs() {
                {key("rate", K::Number, "largest relative growth rate d ln r/dt").req().si("1/s").in(0, inf, true),
                 key("target_overlap", K::Number, "overlap per particle o at which growth stops (e.g. 3e-4)")
                     .req().in(0, 0.1, true),
-                key("every_steps", K::Integer, "steps between measurements of o").def("10").in(1, 1e9)}});
+                key("every_steps", K::Integer, "steps between measurements of o").def("10").in(1, 1e9),
+                key("max_scale", K::Number,
+                    "radii grow to at most this times their initial size (sizes the ghost cut-off of periodic runs)")
+                    .def("2").in(1, 10, true)}});
   d.push_back({"domain", "domain: {...}",
                "The box particles live in; a particle that leaves it through a non-periodic face is removed and "
                "counted in the summary. Through a periodic face it comes back at the opposite one, and contacts "
