@@ -575,8 +575,35 @@ class CaseParser {
     if (!v_.check_map(n, d, "radius_growth")) return;
     auto& g = c_.scene.growth;
     g.enabled = true;
+    const YAML::Node ph = n["phases"];
+    if (ph && (n["rate"] || n["target_overlap"]))
+      v_.error(ph, "radius_growth", "give either rate and target_overlap, or phases, not both");
+    if (!ph && (!n["rate"] || !n["target_overlap"]))
+      v_.error(n, "radius_growth", "missing rate and target_overlap (or a schedule: phases)");
     g.rate = v_.number(n, d, "rate", "radius_growth", 1);
     g.target_overlap = v_.number(n, d, "target_overlap", "radius_growth", 1e-4);
+    if (ph) {
+      if (!ph.IsSequence() || ph.size() == 0) {
+        v_.error(ph, "radius_growth.phases", "expected a non-empty list of phases {rate, target_overlap, until}");
+      } else {
+        const auto& pd = doc("radius_growth.phases");
+        for (std::size_t i = 0; i < ph.size(); ++i) {
+          const auto ctx = idx("radius_growth.phases", i);
+          if (!v_.check_map(ph[i], pd, ctx)) continue;
+          sim::GrowthPhase q;
+          q.rate = v_.number(ph[i], pd, "rate", ctx, 0);
+          q.target_overlap = v_.number(ph[i], pd, "target_overlap", ctx, 1e-4);
+          q.until = v_.number(ph[i], pd, "until", ctx, 0);
+          if (!g.phases.empty() && q.until <= g.phases.back().until)
+            v_.error(ph[i]["until"], ctx, "phases must be in time order (until after the previous phase's)");
+          g.phases.push_back(q);
+        }
+        if (!g.phases.empty()) {
+          g.rate = g.phases.front().rate;
+          g.target_overlap = g.phases.front().target_overlap;
+        }
+      }
+    }
     g.every_steps = v_.integer(n, d, "every_steps", "radius_growth", 10);
     g.max_scale = v_.number(n, d, "max_scale", "radius_growth", 2);
     c_.scene.growth_where = v_.where(n);

@@ -142,8 +142,9 @@ void probe_output_dir(const std::filesystem::path& dir) {
 void add_output_stages(Simulation& s, const RunOptions& opt) {
   const auto& o = s.c.output;
   // Growing radii push grains apart at up to the growth rate times the domain size.
-  const double growth_speed =
-      s.c.scene.growth.enabled ? s.c.scene.growth.rate * (s.scene.domain.hi - s.scene.domain.lo).norm() : 0.0;
+  double growth_rate = s.c.scene.growth.enabled ? s.c.scene.growth.rate : 0.0;
+  for (const auto& ph : s.c.scene.growth.phases) growth_rate = std::max(growth_rate, ph.rate);
+  const double growth_speed = growth_rate * (s.scene.domain.hi - s.scene.domain.lo).norm();
   auto blow = std::make_unique<BlowUpCheck>(s.scene, s.rayleigh_time, 200, growth_speed);
   BlowUpCheck* blow_up = blow.get();
   s.pipeline.add(std::move(blow));

@@ -39,10 +39,24 @@ void RadiusGrowth::run(Scene& s) {
     s.neighbors.add_growth(s.neighbors.skin());
     started_ = true;
   }
-  if (s.clock.step % std::max<std::int64_t>(1, c_.every_steps) == 0) {
-    overlap_ = overlap_per_particle(s);
-    rate_ = c_.rate * std::clamp(1.0 - overlap_ / c_.target_overlap, -1.0, 1.0);
+  if (!c_.phases.empty()) {  // the phase of the current time (after the last: radii fixed)
+    const auto it = std::find_if(c_.phases.begin(), c_.phases.end(),
+                                 [&](const GrowthPhase& ph) { return s.clock.time < ph.until; });
+    const double rate = it == c_.phases.end() ? 0.0 : it->rate;
+    const double target = it == c_.phases.end() ? c_.target_overlap : it->target_overlap;
+    if (rate != c_.rate || target != c_.target_overlap) {
+      c_.rate = rate;
+      c_.target_overlap = target;
+      rate_ = 0;
+      last_measure_ = -1;  // measure now
+    }
   }
+  if (last_measure_ < 0 || s.clock.step - last_measure_ >= std::max<std::int64_t>(1, c_.every_steps)) {
+    last_measure_ = s.clock.step;
+    overlap_ = overlap_per_particle(s);
+    rate_ = c_.rate == 0 ? 0.0 : c_.rate * std::clamp(1.0 - overlap_ / c_.target_overlap, -1.0, 1.0);
+  }
+  if (rate_ == 0) return;
   double f = std::exp(rate_ * s.clock.dt);
   // Growth stops at max_scale times the initial radii (the ghost cut-off of
   // periodic and parallel runs was sized for it).

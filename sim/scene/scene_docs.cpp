@@ -37,13 +37,24 @@ std::vector<EffectDoc> scene_docs() {
                "until contacts carry load and settles at o = target_overlap (radii shrink back if compressed "
                "beyond it). Masses keep the density (m ~ r^3), so the time step of the initial radii stays safe. "
                "Spheres only.",
-               {key("rate", K::Number, "largest relative growth rate d ln r/dt").req().si("1/s").in(0, inf, true),
-                key("target_overlap", K::Number, "overlap per particle o at which growth stops (e.g. 3e-4)")
-                    .req().in(0, 0.1, true),
+               {key("rate", K::Number, "largest relative growth rate d ln r/dt (or give phases)").si("1/s").in(0, inf, true),
+                key("target_overlap", K::Number, "overlap per particle o at which growth stops, e.g. 2e-3 (or give phases)")
+                    .in(0, 0.1, true),
+                key("phases", K::List,
+                    "a schedule instead of rate and target_overlap: [{rate, target_overlap, until}, ...] in time "
+                    "order (see radius_growth.phases); after the last phase the radii stay fixed"),
                 key("every_steps", K::Integer, "steps between measurements of o").def("10").in(1, 1e9),
                 key("max_scale", K::Number,
                     "radii grow to at most this times their initial size (sizes the ghost cut-off of periodic runs)")
                     .def("2").in(1, 10, true)}});
+  d.push_back({"radius_growth.phases", "radius_growth: {phases: [{...}, ...]}",
+               "One phase of a compression schedule, applied until the simulated time `until`; rate 0 holds the "
+               "radii fixed while the packing relaxes. E.g. fast growth to a dense fluid, slow growth until it jams, "
+               "decompression to a lower target, relaxation (cases/jam_frictionless).",
+               {key("rate", K::Number, "largest relative growth rate in this phase; 0: radii fixed")
+                    .req().si("1/s").in(0, inf),
+                key("target_overlap", K::Number, "overlap per particle the servo aims at").req().in(0, 0.1, true),
+                key("until", K::Number, "end of the phase (simulated time)").req().si("s").in(0, inf, true)}});
   d.push_back({"domain", "domain: {...}",
                "The box particles live in; a particle that leaves it through a non-periodic face is removed and "
                "counted in the summary. Through a periodic face it comes back at the opposite one, and contacts "

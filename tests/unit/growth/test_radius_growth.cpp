@@ -163,6 +163,44 @@ TEST(RadiusGrowth, ServoHoldsTheOverlapPerParticleAtTheTarget) {
   EXPECT_FALSE(growth_stage(s)->capped());
 }
 
+TEST(RadiusGrowth, PhasesRunInTurnAndRadiiStayFixedAfterwards) {
+  // Free particles: 5/s until 0.01 s, then 0 (held), then 10/s until 0.03 s,
+  // then fixed to the end: r = r0 exp(5 x 0.01 + 10 x 0.01).
+  std::string y = box_case(3, 0.0002, 0.01, 5.0, 1e-3, 0.04, false);
+  y.replace(y.find("radius_growth: {rate: 5"), y.find("\n", y.find("radius_growth:")) - y.find("radius_growth: {rate: 5"),
+            "radius_growth: {phases: [{rate: 5, target_overlap: 1e-3, until: 0.01}, {rate: 0, target_overlap: 1e-3, "
+            "until: 0.02}, {rate: 10, target_overlap: 1e-3, until: 0.03}]}");
+  auto s = from_yaml(y);
+  s.pipeline.initialize(s.scene);
+  double r_mid = 0;
+  while (s.scene.clock.step < s.scene.clock.n_steps) {
+    s.pipeline.step(s.scene);
+    if (r_mid == 0 && s.scene.clock.time >= 0.015) r_mid = s.scene.particles.radius[0];
+  }
+  const double dt = s.scene.clock.dt;
+  EXPECT_NEAR(r_mid / 0.0002, std::exp(0.05), 5 * dt * std::exp(0.05));  // one step of either phase boundary
+  EXPECT_NEAR(s.scene.particles.radius[0] / 0.0002, std::exp(0.15), 20 * dt * std::exp(0.15));
+  // Case errors: phases with rate/target, and out of order.
+  const auto err = [&](const std::string& g) {
+    std::string t = y;
+    t.replace(t.find("radius_growth:"), t.find("\n", t.find("radius_growth:")) - t.find("radius_growth:"), g);
+    try {
+      (void)from_yaml(t);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(err("radius_growth: {rate: 1, phases: [{rate: 1, target_overlap: 1e-3, until: 0.1}]}")
+                .find("either rate and target_overlap, or phases"),
+            std::string::npos);
+  EXPECT_NE(err("radius_growth: {phases: [{rate: 1, target_overlap: 1e-3, until: 0.1}, {rate: 1, target_overlap: "
+                "1e-3, until: 0.05}]}")
+                .find("phases must be in time order"),
+            std::string::npos);
+  EXPECT_NE(err("radius_growth: {max_scale: 1.5}").find("missing rate and target_overlap"), std::string::npos);
+}
+
 TEST(RadiusGrowth, RefusedForEllipsoids) {
   std::string y = box_case(10, 0.0003, 0.006, 1.0, 1e-3, 0.001, false);
   y.replace(y.find(", count: 10"), 11, ", count: 10, shape: {type: ellipsoid, aspect_ratio: 1.5}");
