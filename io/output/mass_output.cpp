@@ -5,6 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "sim/parallel/comm.hpp"
+#include "sim/parallel/exchange.hpp"
+
 namespace grains::io {
 
 namespace fs = std::filesystem;
@@ -25,6 +28,11 @@ MassCount count_mass(const sim::Scene& s, const std::optional<std::pair<sim::Vec
     ++c.grains;
     c.mass += s.bodies.mass[b];
   }
+  if (s.exchange) {  // each rank counted what it owns
+    const auto& comm = s.exchange->comm();
+    c.grains = static_cast<std::size_t>(comm.sum(static_cast<std::int64_t>(c.grains)));
+    c.mass = comm.sum(c.mass);
+  }
   return c;
 }
 
@@ -37,13 +45,17 @@ std::string MassOutput::name() const {
 }
 
 void MassOutput::open() {
-  if (out_.is_open()) return;
+  if (out_.is_open() || !sim::Comm::world().root()) return;
   out_.open(file_, std::ios::trunc);
   if (!out_) throw std::runtime_error("cannot write '" + file_.string() + "'");
   out_ << "step,time_s,grains,mass_kg,lost_particles\n";
 }
 
 void MassOutput::resume(const sim::Scene& s) {
+  if (!sim::Comm::world().root()) {
+    write_row(s);  // the reductions are collective
+    return;
+  }
   // Keep the header and the rows before the restart step, then write the
   // restored state's row and append after it.
   std::vector<std::string> keep;
@@ -72,10 +84,12 @@ void MassOutput::write_row(const sim::Scene& s) {
   last_step_ = s.clock.step;
   std::optional<std::pair<sim::Vec3, sim::Vec3>> plane;
   if (cfg_.has_plane) plane.emplace(cfg_.point, cfg_.normal);
-  const MassCount c = count_mass(s, plane);
+  const MassCount c = count_mass(s, plane);  // collective under MPI
+  const std::int64_t lost = s.exchange ? s.exchange->comm().sum(s.lost_particles) : s.lost_particles;
+  if (!sim::Comm::world().root()) return;
   char buf[160];
   std::snprintf(buf, sizeof buf, "%lld,%.10g,%zu,%.10g,%lld\n", static_cast<long long>(s.clock.step), s.clock.time,
-                c.grains, c.mass, static_cast<long long>(s.lost_particles));
+                c.grains, c.mass, static_cast<long long>(lost));
   out_ << buf;
   if (!out_) throw std::runtime_error("could not write '" + file_.string() + "'");
 }
@@ -86,7 +100,7 @@ void MassOutput::run(sim::Scene& s) {
 
 void MassOutput::finish(sim::Scene& s) {
   write_row(s);
-  out_.flush();
+  if (out_.is_open()) out_.flush();
 }
 
 }  // namespace grains::io

@@ -35,9 +35,11 @@ fi
 cmake --build "$BUILD" -j2 --target grains test_packing test_packing_long test_ellipsoid_packing \
   test_clump_regression >/dev/null || exit 1
 mkdir -p "$RESULTS"
-[ "$REUSE" = 1 ] || rm -f "$RESULTS"/*.json
+[ "$REUSE" = 1 ] || rm -f "$RESULTS"/*.json "$RESULTS"/*.commit
 export GRAINS_RESULTS_DIR="$RESULTS"
 status=0
+commit="$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo '?')"
+[ -n "$(git -C "$ROOT" status --porcelain --untracked-files=no 2>/dev/null)" ] && commit="$commit+changes"
 
 # run NAME RECORD COMMAND...: runs the command unless RECORD.json exists (--reuse).
 run() {
@@ -51,6 +53,7 @@ run() {
   local t0=$SECONDS
   "$@" > "$RESULTS/$name.log" 2>&1 || { echo "   FAILED (log: $RESULTS/$name.log)"; status=1; }
   echo "   $((SECONDS - t0)) s"
+  echo "$commit" > "$RESULTS/$rec.commit"  # what the record was measured with
 }
 
 T="$BUILD/tests/regression"
@@ -67,8 +70,6 @@ if [ "$CI_ONLY" = 0 ]; then
   run ellipsoid_sweep ellipsoid_sweep env BUILD="$BUILD" REUSE="$REUSE" bash "$HERE/ellipsoid_packing_sweep.sh"
 fi
 
-commit="$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo '?')"
-[ -n "$(git -C "$ROOT" status --porcelain -- . 2>/dev/null)" ] && commit="$commit (with uncommitted changes)"
 machine="$(lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1), $(nproc) cores"
 cat > "$RESULTS/meta.json" <<EOF
 {"date": "$(date -u +%Y-%m-%d)", "commit": "$commit", "machine": "$machine"}

@@ -29,6 +29,7 @@ TEST(PackingLong, FrictionSweepPouredSpheres) {
       c.width = 0.02;
       c.fill_top = 0.07;
       c.end = 0.35;
+      c.end_frictionless = 0.45;
       c.seed = seed;
       const PourResult r = pour_spheres(mus[k], c);
       EXPECT_LT(r.speed, 0.01 * std::sqrt(2 * 9.81 * 0.001)) << "not settled at mu = " << mus[k];
