@@ -137,7 +137,8 @@ def main():
             g2 = [rec["k"]] + [x for x in [g / 0.001 for g in grid]]
             ax[1].plot(g2, [rec["C"] ** 0.4 * max(x - rec["k"], 0) for x in g2], "-", lw=0.8)
         ref = refs["beverloo_C"]["reference"]
-        gx = [1.5 + i * 0.2 for i in range(60)]
+        dmax = max(max(r["D"]) for r in (bv_ci, bv_long) if r) / 0.001 * 1.1
+        gx = [1.5 + i * (dmax - 1.5) / 60 for i in range(61)]
         ax[1].plot(gx, [ref ** 0.4 * (x - 1.5) for x in gx], "k--", lw=0.8, label="C = 0.58, k = 1.5")
         ax[0].set_xlabel("orifice diameter D / d")
         ax[0].set_ylabel("mass flow rate W (g/s)")

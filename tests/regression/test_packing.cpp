@@ -25,7 +25,7 @@ TEST(Packing, FrictionSweepPouredSpheres) {
   for (double mu : mus) {
     const PourResult r = pour_spheres(mu, c);
     EXPECT_EQ(r.n, static_cast<std::size_t>(c.count));
-    EXPECT_LT(r.speed, 0.01 * std::sqrt(2 * 9.81 * 0.001)) << "not settled at mu = " << mu;
+    EXPECT_LT(r.speed, settled_speed()) << "not settled at mu = " << mu;
     EXPECT_GT(r.bulk_height, 0.015) << "bed too shallow for a bulk region";
     phi.push_back(r.phi);
   }

@@ -32,7 +32,7 @@ TEST(PackingLong, FrictionSweepPouredSpheres) {
       c.end_frictionless = 0.45;
       c.seed = seed;
       const PourResult r = pour_spheres(mus[k], c);
-      EXPECT_LT(r.speed, 0.01 * std::sqrt(2 * 9.81 * 0.001)) << "not settled at mu = " << mus[k];
+      EXPECT_LT(r.speed, settled_speed()) << "not settled at mu = " << mus[k];
       all[k].push_back(r.phi);
     }
     mean_phi.push_back(mean(all[k]));
