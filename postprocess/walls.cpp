@@ -12,6 +12,8 @@
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataReader.h>
 
+#include "contact/plane.hpp"
+
 namespace grains::postprocess {
 
 WallSet read_walls(const std::filesystem::path& vtp) {
@@ -24,6 +26,7 @@ WallSet read_walls(const std::filesystem::path& vtp) {
   WallSet w;
   if (!poly || poly->GetNumberOfCells() == 0) return w;
   vtkDataArray* id = poly->GetCellData()->GetArray("wall");
+  vtkDataArray* type = poly->GetCellData()->GetArray("wall_type");
   std::map<long, std::vector<vtkIdType>> groups;  // wall -> its cells
   for (vtkIdType c = 0; c < poly->GetNumberOfCells(); ++c)
     groups[id ? static_cast<long>(id->GetComponent(c, 0)) : static_cast<long>(c)].push_back(c);
@@ -41,6 +44,31 @@ WallSet read_walls(const std::filesystem::path& vtp) {
       const Vec3 n = (b - a).cross(c - a);
       if (n.norm() == 0) continue;
       w.planes.push_back({a, n.normalized()});
+      continue;
+    }
+    if (type && static_cast<int>(type->GetComponent(cells[0], 0)) == 2) {
+      // A finite plane: quads (inner k, inner k+1, outer k+1, outer k).
+      std::vector<Vec3> inner, outer;
+      for (vtkIdType c : cells) {
+        poly->GetCellPoints(c, pts);
+        if (pts->GetNumberOfIds() != 4) continue;
+        inner.push_back(point(pts->GetId(0)));
+        outer.push_back(point(pts->GetId(3)));
+      }
+      if (outer.size() < 3) continue;
+      AnnulusWall a;
+      for (const auto& p : outer) a.centre += p;
+      a.centre /= static_cast<double>(outer.size());
+      const Vec3 n = (outer[1] - outer[0]).cross(outer[outer.size() / 2] - outer[0]);
+      if (n.norm() == 0) continue;
+      a.normal = n.normalized();
+      for (std::size_t k = 0; k < outer.size(); ++k) {
+        a.r_in += (inner[k] - a.centre).norm();
+        a.r_out += (outer[k] - a.centre).norm();
+      }
+      a.r_in /= static_cast<double>(inner.size());
+      a.r_out /= static_cast<double>(outer.size());
+      w.annuli.push_back(a);
       continue;
     }
     // A cylinder: quads (bottom k, bottom k+1, top k+1, top k).
@@ -83,6 +111,12 @@ std::vector<int> wall_contacts(const Frame& f, const WallSet& w, double gap) {
   for (std::size_t i = 0; i < f.size(); ++i) {
     for (const auto& p : w.planes)
       if (std::abs(p.normal.dot(f.x[i] - p.point)) < reach(i, p.normal) + gap) ++z[i];
+    for (const auto& a : w.annuli) {
+      // Distance to the nearest point of the annulus (contact/plane.hpp).
+      const Vec3 d = f.x[i] - contact::annulus_nearest(f.x[i], {a.centre, a.normal, a.r_in, a.r_out});
+      const double dist = d.norm();
+      if (dist < reach(i, dist > 0 ? Vec3(d / dist) : a.normal) + gap) ++z[i];
+    }
     for (const auto& c : w.cylinders) {
       const Vec3 d = f.x[i] - c.base;
       const double t = c.axis.dot(d);

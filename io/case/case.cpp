@@ -29,7 +29,19 @@ void register_io_docs() {
           sim::key("vtk", K::Bool, "write VTK frames").def("true"),
           sim::key("progress", K::Bool, "print a progress line to stderr (also -q)").def("true"),
           sim::key("progress_interval", K::Number, "wall-clock time between progress lines").def("2").si("s").in(0, inf),
-          sim::key("solid_fraction", K::Map, "solid-fraction field as VTK image data (see output.solid_fraction)")}});
+          sim::key("solid_fraction", K::Map, "solid-fraction field as VTK image data (see output.solid_fraction)"),
+          sim::key("mass", K::Map, "grains and their mass against time in mass.csv, e.g. silo discharge (see output.mass)")}});
+    sim::register_effect_doc(
+        {"output.mass", "output: {mass: {...}}",
+         "One row per interval in OUTDIR/mass.csv: step, time_s, grains and mass_kg (spheres, ellipsoids, whole "
+         "clumps by their centre of mass) on the front side of a plane (the whole domain without one), and "
+         "lost_particles, removed so far because they left the domain. With the plane through a silo's orifice, "
+         "the discharge rate is minus the slope of mass_kg against time.",
+         {sim::key("every", K::Number, "simulated time between rows; default the VTK frame cadence")
+              .si("s").in(0, inf, true),
+          sim::key("every_steps", K::Integer, "steps between rows (instead of every)").in(1, 1e15),
+          sim::key("point", K::Vec3, "a point on the counting plane (give with normal)").si("m"),
+          sim::key("normal", K::Vec3, "the plane's normal; grains on this side count (normalised for you)")}});
     sim::register_effect_doc(
         {"output.solid_fraction", "output: {solid_fraction: {...}}",
          "The coarse-grained solid fraction on a regular grid over the domain (NUFFT of the particles, a Gaussian "
@@ -74,6 +86,7 @@ class CaseParser {
     parse_time(root["time"]);
     parse_neighbor(root["neighbor"]);
     parse_parallel(root["parallel"]);
+    parse_growth(root["radius_growth"]);
     parse_output(root["output"]);
     parse_checkpoint(root["checkpoint"]);
   }
@@ -504,6 +517,10 @@ class CaseParser {
           p.normal = Vec3(0, 0, 1);
         }
         p.normal.normalize();
+        p.hole_radius = v_.number(w, d, "hole_radius", ctx, 0);
+        p.radius = v_.number(w, d, "radius", ctx, std::numeric_limits<double>::infinity());
+        if (w["radius"] && p.radius <= p.hole_radius)
+          v_.error(w["radius"], ctx, "radius must be larger than hole_radius (" + std::to_string(p.hole_radius) + " m)");
         c_.scene.walls.planes.push_back(p);
       } else {
         sim::CylinderWall c;
@@ -566,6 +583,46 @@ class CaseParser {
     c_.scene.overlap_tolerance = v_.number(n, d, "overlap_tolerance", "neighbor", 0.01);
   }
 
+  void parse_growth(const YAML::Node& n) {
+    if (!n) return;
+    const auto& d = doc("radius_growth");
+    if (!v_.check_map(n, d, "radius_growth")) return;
+    auto& g = c_.scene.growth;
+    g.enabled = true;
+    const YAML::Node ph = n["phases"];
+    if (ph && (n["rate"] || n["target_overlap"]))
+      v_.error(ph, "radius_growth", "give either rate and target_overlap, or phases, not both");
+    if (!ph && (!n["rate"] || !n["target_overlap"]))
+      v_.error(n, "radius_growth", "missing rate and target_overlap (or a schedule: phases)");
+    g.rate = v_.number(n, d, "rate", "radius_growth", 1);
+    g.target_overlap = v_.number(n, d, "target_overlap", "radius_growth", 1e-4);
+    if (ph) {
+      if (!ph.IsSequence() || ph.size() == 0) {
+        v_.error(ph, "radius_growth.phases", "expected a non-empty list of phases {rate, target_overlap, until}");
+      } else {
+        const auto& pd = doc("radius_growth.phases");
+        for (std::size_t i = 0; i < ph.size(); ++i) {
+          const auto ctx = idx("radius_growth.phases", i);
+          if (!v_.check_map(ph[i], pd, ctx)) continue;
+          sim::GrowthPhase q;
+          q.rate = v_.number(ph[i], pd, "rate", ctx, 0);
+          q.target_overlap = v_.number(ph[i], pd, "target_overlap", ctx, 1e-4);
+          q.until = v_.number(ph[i], pd, "until", ctx, 0);
+          if (!g.phases.empty() && q.until <= g.phases.back().until)
+            v_.error(ph[i]["until"], ctx, "phases must be in time order (until after the previous phase's)");
+          g.phases.push_back(q);
+        }
+        if (!g.phases.empty()) {
+          g.rate = g.phases.front().rate;
+          g.target_overlap = g.phases.front().target_overlap;
+        }
+      }
+    }
+    g.every_steps = v_.integer(n, d, "every_steps", "radius_growth", 10);
+    g.max_scale = v_.number(n, d, "max_scale", "radius_growth", 2);
+    c_.scene.growth_where = v_.where(n);
+  }
+
   void parse_output(const YAML::Node& n) {
     if (!n) return;
     const auto& d = doc("output");
@@ -589,6 +646,29 @@ class CaseParser {
         if (sf["every"] && sf["every_steps"]) v_.error(sf["every_steps"], ctx, "give either every or every_steps, not both");
         c.every = v_.number(sf, sd, "every", ctx, 0);
         c.every_steps = v_.integer(sf, sd, "every_steps", ctx, 0);
+      }
+    }
+    if (const YAML::Node m = n["mass"]) {
+      const auto& md = doc("output.mass");
+      const std::string ctx = "output.mass";
+      if (v_.check_map(m, md, ctx)) {
+        auto& c = o.mass;
+        c.enabled = true;
+        if (m["every"] && m["every_steps"]) v_.error(m["every_steps"], ctx, "give either every or every_steps, not both");
+        c.every = v_.number(m, md, "every", ctx, 0);
+        c.every_steps = v_.integer(m, md, "every_steps", ctx, 0);
+        if (static_cast<bool>(m["point"]) != static_cast<bool>(m["normal"])) {
+          v_.error(m, ctx, "give both point and normal of the counting plane, or neither");
+        } else if (m["point"]) {
+          c.has_plane = true;
+          c.point = v_.vec3(m, md, "point", ctx);
+          c.normal = v_.vec3(m, md, "normal", ctx, Vec3(0, 0, 1));
+          if (c.normal.norm() == 0) {
+            v_.error(m["normal"], ctx, "normal must not be the zero vector");
+            c.normal = Vec3(0, 0, 1);
+          }
+          c.normal.normalize();
+        }
       }
     }
   }

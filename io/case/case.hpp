@@ -6,6 +6,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "io/case/validator.hpp"
+#include "io/output/mass_output.hpp"
 #include "io/output/solid_fraction_output.hpp"
 #include "sim/scene/scene_config.hpp"
 
@@ -18,6 +19,7 @@ struct OutputConfig {
   bool progress = true;
   double progress_interval = 2.0;  // wall-clock seconds between progress lines
   SolidFractionConfig solid_fraction;
+  MassOutputConfig mass;
 };
 
 /// Periodic HDF5 checkpoints (io/checkpoint): cadence and retention.

@@ -35,11 +35,12 @@ struct BlowUp : std::runtime_error {
 
 /// Every `every` steps: positions and velocities finite, speeds below a bound
 /// (100 times the largest speed a particle could reach by falling through
-/// the domain or moving with the fastest wall, plus the initial speeds), and
+/// the domain or moving with the fastest wall, plus the initial speeds and
+/// `extra_speed`, e.g. the growth rate of radii times the domain size), and
 /// no pair overlapping by more than half the smaller radius.
 class BlowUpCheck final : public sim::Stage {
  public:
-  BlowUpCheck(const sim::Scene& s, double rayleigh_time, std::int64_t every = 200);
+  BlowUpCheck(const sim::Scene& s, double rayleigh_time, std::int64_t every = 200, double extra_speed = 0);
   std::string name() const override { return "check.blow_up(every " + std::to_string(every_) + " steps)"; }
   sim::Phase phase() const override { return sim::Phase::Output; }
   void run(sim::Scene& s) override;

@@ -325,12 +325,38 @@ std::string VtkOutput::write_bodies(const sim::Scene& s, const fs::path& file) c
 void VtkOutput::write_walls(const sim::Scene& s, const fs::path& file) const {
   vtkNew<vtkPoints> pts;
   vtkNew<vtkCellArray> polys;
-  vtkNew<vtkIntArray> wall_id;
+  vtkNew<vtkIntArray> wall_id, wall_type;
   wall_id->SetName("wall");
+  wall_type->SetName("wall_type");  // 0 infinite plane, 1 cylinder, 2 finite plane (disc or annulus)
   int w = 0;
   const Vec3 c = 0.5 * (s.domain.lo + s.domain.hi);
   const double half = 0.5 * (s.domain.hi - s.domain.lo).norm();
   for (const auto& pl : s.walls.planes) {
+    if (pl.finite()) {
+      // A ring of quads (inner k, inner k+1, outer k+1, outer k) between the
+      // hole and the outer rim; an unbounded annulus is drawn out to the
+      // domain's half diagonal beyond the hole's centre.
+      const Vec3 a = pl.normal.unitOrthogonal();
+      const Vec3 b = pl.normal.cross(a);
+      const double r_out = std::isfinite(pl.radius) ? pl.radius : (pl.point - c).norm() + half;
+      const int seg = 64;
+      const vtkIdType first = pts->GetNumberOfPoints();
+      for (int k = 0; k < seg; ++k) {
+        const double t = 2 * M_PI * k / seg;
+        const Vec3 e = std::cos(t) * a + std::sin(t) * b;
+        pts->InsertNextPoint(Vec3(pl.point + pl.hole_radius * e).data());
+        pts->InsertNextPoint(Vec3(pl.point + r_out * e).data());
+      }
+      for (int k = 0; k < seg; ++k) {
+        const vtkIdType k2 = (k + 1) % seg;
+        vtkIdType q[4] = {first + 2 * k, first + 2 * k2, first + 2 * k2 + 1, first + 2 * k + 1};
+        polys->InsertNextCell(4, q);
+        wall_id->InsertNextValue(w);
+        wall_type->InsertNextValue(2);
+      }
+      ++w;
+      continue;
+    }
     // A square on the plane, centred at the projection of the domain centre,
     // as wide as the domain's diagonal.
     const Vec3 o = c - pl.normal * pl.normal.dot(c - pl.point);
@@ -341,6 +367,7 @@ void VtkOutput::write_walls(const sim::Scene& s, const fs::path& file) const {
     for (int k = 0; k < 4; ++k) ids[k] = pts->InsertNextPoint(Vec3(o + half * (sx[k] * a + sy[k] * b)).data());
     polys->InsertNextCell(4, ids);
     wall_id->InsertNextValue(w++);
+    wall_type->InsertNextValue(0);
   }
   for (const auto& cy : s.walls.cylinders) {
     const auto& sf = cy.surface;
@@ -359,6 +386,7 @@ void VtkOutput::write_walls(const sim::Scene& s, const fs::path& file) const {
       vtkIdType q[4] = {first + 2 * k, first + 2 * k2, first + 2 * k2 + 1, first + 2 * k + 1};
       polys->InsertNextCell(4, q);
       wall_id->InsertNextValue(w);
+      wall_type->InsertNextValue(1);
     }
     ++w;
   }
@@ -366,6 +394,7 @@ void VtkOutput::write_walls(const sim::Scene& s, const fs::path& file) const {
   poly->SetPoints(pts);
   poly->SetPolys(polys);
   poly->GetCellData()->AddArray(wall_id);
+  poly->GetCellData()->AddArray(wall_type);
   vtkNew<vtkXMLPolyDataWriter> wr;
   wr->SetInputData(poly);
   write_or_throw(wr.Get(), file);

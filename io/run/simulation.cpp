@@ -13,6 +13,7 @@
 
 #include <omp.h>
 
+#include "io/output/mass_output.hpp"
 #include "io/output/progress.hpp"
 #include "sim/neighbor/neighbor_stage.hpp"
 #include "sim/parallel/comm.hpp"
@@ -141,7 +142,11 @@ void probe_output_dir(const std::filesystem::path& dir) {
 
 void add_output_stages(Simulation& s, const RunOptions& opt) {
   const auto& o = s.c.output;
-  auto blow = std::make_unique<BlowUpCheck>(s.scene, s.rayleigh_time);
+  // Growing radii push grains apart at up to the growth rate times the domain size.
+  double growth_rate = s.c.scene.growth.enabled ? s.c.scene.growth.rate : 0.0;
+  for (const auto& ph : s.c.scene.growth.phases) growth_rate = std::max(growth_rate, ph.rate);
+  const double growth_speed = growth_rate * (s.scene.domain.hi - s.scene.domain.lo).norm();
+  auto blow = std::make_unique<BlowUpCheck>(s.scene, s.rayleigh_time, 200, growth_speed);
   BlowUpCheck* blow_up = blow.get();
   s.pipeline.add(std::move(blow));
   VtkOutput* vtk = nullptr;
@@ -156,6 +161,12 @@ void add_output_stages(Simulation& s, const RunOptions& opt) {
                                : sf.every > 0     ? std::max<std::int64_t>(1, std::llround(sf.every / s.scene.clock.dt))
                                                   : frame_steps(o, s.scene.clock.dt);
     s.pipeline.add(std::make_unique<SolidFractionOutput>(opt.out_dir, sf, every));
+  }
+  if (o.mass.enabled) {
+    const std::int64_t every = o.mass.every_steps > 0 ? o.mass.every_steps
+                               : o.mass.every > 0    ? std::max<std::int64_t>(1, std::llround(o.mass.every / s.scene.clock.dt))
+                                                     : frame_steps(o, s.scene.clock.dt);
+    s.pipeline.add(std::make_unique<MassOutput>(opt.out_dir, o.mass, every));
   }
   if (o.progress && !opt.quiet) s.pipeline.add(std::make_unique<Progress>(*opt.log, o.progress_interval));
   // Last of the output phase: a checkpoint holds the frames of its own step.
@@ -202,6 +213,7 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
       if (talk) *opt.log << "removed " << name << " (after the restart point)\n";
     ck->restarted_from(opt.restart, s.scene.clock.step);
     if (vtk) vtk->resume(s.scene, x.frame_times, x.frame_steps);
+    if (auto* m = find_stage<MassOutput>(s)) m->resume(s.scene);
     r.restarted_from = opt.restart.string();
     if (talk)
       *opt.log << "restarting from " << opt.restart.string() << " at step " << s.scene.clock.step << " (t = "
@@ -210,6 +222,7 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
     s.pipeline.initialize(s.scene);
     if (vtk) vtk->write_frame(s.scene);
     if (auto* sf = find_stage<SolidFractionOutput>(s)) sf->write_frame(s.scene);
+    if (auto* m = find_stage<MassOutput>(s)) m->write_row(s.scene);
   }
   r.particles_start = s.scene.particles.n_owned();
   double particle_steps = 0;

@@ -68,7 +68,7 @@ bool NeighborList::needs_rebuild(const ParticleStore& p, const Walls& walls, dou
   if (x_build_.size() != n) return true;
   double m2 = 0;
   for (std::size_t i = 0; i < n; ++i) m2 = std::max(m2, (p.x[i] - x_build_[i]).squaredNorm());
-  const double m = std::sqrt(m2);
+  const double m = std::sqrt(m2) + growth_;
   return 2 * m > skin_ || m + walls.max_displacement(time - build_time_) > skin_;
 }
 
@@ -169,6 +169,15 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   cylinder_near.assign(walls.cylinders.size(), {});
   for (std::size_t w = 0; w < walls.planes.size(); ++w) {
     const auto& wall = walls.planes[w];
+    if (wall.finite()) {  // a disc or annulus, touched from both sides and on its rims
+      const auto a = wall.annulus();
+      for (std::size_t i = 0; i < n_own; ++i) {
+        const double reach = p.radius[i] + skin_;
+        if ((p.x[i] - contact::annulus_nearest(p.x[i], a)).squaredNorm() < reach * reach)
+          plane_near[w].push_back(static_cast<std::uint32_t>(i));
+      }
+      continue;
+    }
     for (std::size_t i = 0; i < n_own; ++i)
       if (contact::plane_distance(p.x[i], wall.point, wall.normal) < p.radius[i] + skin_)
         plane_near[w].push_back(static_cast<std::uint32_t>(i));
@@ -186,6 +195,7 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   x_build_.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(n_own));
   build_time_ = time;
   build_id_.assign(p.id.begin(), p.id.begin() + static_cast<std::ptrdiff_t>(n));
+  growth_ = 0;
   ++stats_.builds;
   stats_.pairs = partner.size();
 }

@@ -9,7 +9,8 @@
 // Walls get near lists (particles within r + skin of the surface).
 //
 // The list is rebuilt when a particle may have closed the skin:
-// 2 max|x - x_build| > skin (pairs) or max|x - x_build| + wall travel > skin.
+// 2 max|x - x_build| > skin (pairs) or max|x - x_build| + wall travel > skin,
+// each with the radius growth since the build added to the displacement.
 #include <cstdint>
 #include <vector>
 
@@ -37,6 +38,12 @@ class NeighborList {
   /// Makes the next needs_rebuild() true: for an integrator that knows its
   /// coming steps may move particles further than the skin allows.
   void invalidate() { x_build_.clear(); }
+
+  /// Radii grew by up to dr since the last build (integrate/radius_growth):
+  /// the growth closes gaps like displacement does and counts in the trigger.
+  void add_growth(double dr) { growth_ += dr; }
+  /// Recomputes the per-pair constants after radii or masses changed.
+  void refresh_pair_constants(const ParticleStore& p) { compute_pair_constants(p); }
 
   /// Rebuilds rows, re-sorts particles by cell for locality (when sort is
   /// true; only without ghosts) and carries the contact history over. lo/hi
@@ -114,6 +121,7 @@ class NeighborList {
   double skin_ = 0;
   double build_time_ = 0;
   bool with_gather_ = false;
+  double growth_ = 0;  // largest radius growth since the build
   std::vector<Vec3> x_build_;
   // Global ids of all particles (owned and ghosts) at the last build: the
   // keys that carry history to the next build.

@@ -7,6 +7,7 @@
 #include "sim/integrate/arkode.hpp"
 #include "sim/integrate/clump_bodies.hpp"
 #include "sim/integrate/history_state_law.hpp"
+#include "sim/integrate/radius_growth.hpp"
 #include "sim/integrate/rigid_body.hpp"
 #include "sim/integrate/verlet.hpp"
 #include "sim/laws/ellipsoid_pair_stage.hpp"
@@ -143,6 +144,12 @@ Pipeline assemble_pipeline(const Scene& s, const SceneConfig& c) {
   else
     add_integrators<false>(p, n);
   if (n.moving_walls && c.integrator == Integrator::Verlet) p.add(std::make_unique<MoveWalls>());
+  if (c.growth.enabled) {
+    if (c.integrator != Integrator::Verlet)
+      throw SetupError("radius_growth (isotropic compression) runs with the Verlet integrator only; remove "
+                       "time.integrator: arkode or the growth");
+    p.add(std::make_unique<RadiusGrowth>(c.growth));
+  }
   p.add(std::make_unique<NeighborStage>(c.sort_particles));
   if (n.tangential)
     dispatch_rolling<MindlinTangential>(p, n);

@@ -176,6 +176,22 @@ Scene build_scene(SceneConfig& c) {
       }
     }
   }
+  if (c.growth.enabled) {
+    c.growth.initial_radius = std::numeric_limits<double>::infinity();
+    for (const auto& set : c.sets)
+      c.growth.initial_radius =
+          std::min(c.growth.initial_radius, set.placement.radii.empty()
+                                                ? set.size.smallest()
+                                                : *std::min_element(set.placement.radii.begin(), set.placement.radii.end()));
+  }
+  if (c.growth.enabled && (need.ellipsoids || need.clumps))
+    throw SetupError(c.growth_where + ": radius_growth grows spheres only; this scene has " +
+                     (need.ellipsoids ? "ellipsoids" : "clumps"));
+  if (need.ellipsoids)
+    for (const auto& w : s.walls.planes)
+      if (w.finite())
+        throw SetupError("wall '" + w.name + "': ellipsoids against a finite plane (hole_radius or radius) are not "
+                         "supported; use an infinite plane or spheres");
   if (need.ellipsoids)
     for (const auto& w : s.walls.cylinders)
       if (!w.surface.inside)
@@ -206,7 +222,9 @@ void setup_parallel(Scene& s, const SceneConfig& c, double rmax) {
   if (s.particles.fields().has(Field::Body))
     for (std::size_t i = 0; i < s.particles.n_owned(); ++i)
       if (s.particles.body[i] >= 0) extent = std::max(extent, s.particles.body_offset[i].norm());
-  const double cut = 2 * rmax + s.neighbors.skin() + extent;
+  // Growing radii (radius_growth) reach at most max_scale times their start.
+  const double grow = c.growth.enabled ? c.growth.max_scale : 1.0;
+  const double cut = 2 * rmax * grow + s.neighbors.skin() + extent;
   ExchangeOptions opt;
   opt.dims = c.parallel.dims;
   opt.balance_threshold = c.parallel.balance_threshold;

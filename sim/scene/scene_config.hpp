@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/integrate/radius_growth.hpp"
 #include "sim/laws/material.hpp"
 #include "sim/scene/scene.hpp"
 #include "sim/walls/walls.hpp"
@@ -124,6 +125,8 @@ struct SceneConfig {
   bool sort_particles = true;
   ParallelConfig parallel;
   double overlap_tolerance = 0.01;  // initial overlaps above this fraction of the smaller radius are refused
+  RadiusGrowthConfig growth;        // isotropic compression by growing radii (radius_growth)
+  std::string growth_where;
   std::vector<std::string> warnings;  // filled by build_scene
 };
 

@@ -27,7 +27,34 @@ std::vector<EffectDoc> scene_docs() {
                 key("neighbor", K::Map, "neighbour lists (see neighbor)"),
                 key("parallel", K::Map, "threads and MPI ranks (see parallel)"),
                 key("output", K::Map, "output (see output)"),
-                key("checkpoint", K::Map, "HDF5 checkpoints for restart (see checkpoint)")}});
+                key("checkpoint", K::Map, "HDF5 checkpoints for restart (see checkpoint)"),
+                key("radius_growth", K::Map, "isotropic compression by growing radii (see radius_growth)")}});
+  d.push_back({"radius_growth", "radius_growth: {...}",
+               "Isotropic compression by growing radii (a jamming protocol): each step every radius is multiplied "
+               "by exp(g dt), g = rate * clamp(1 - o/target_overlap, -1, 1), where the overlap per particle o is the "
+               "sum over touching pairs of delta/(r_i + r_j) divided by the number of particles (about Z/2 times the "
+               "mean relative overlap of a contact: zero while the packing is loose). The packing grows at `rate` "
+               "until contacts carry load and settles at o = target_overlap (radii shrink back if compressed "
+               "beyond it). Masses keep the density (m ~ r^3), so the time step of the initial radii stays safe. "
+               "Spheres only.",
+               {key("rate", K::Number, "largest relative growth rate d ln r/dt (or give phases)").si("1/s").in(0, inf, true),
+                key("target_overlap", K::Number, "overlap per particle o at which growth stops, e.g. 2e-3 (or give phases)")
+                    .in(0, 0.1, true),
+                key("phases", K::List,
+                    "a schedule instead of rate and target_overlap: [{rate, target_overlap, until}, ...] in time "
+                    "order (see radius_growth.phases); after the last phase the radii stay fixed"),
+                key("every_steps", K::Integer, "steps between measurements of o").def("10").in(1, 1e9),
+                key("max_scale", K::Number,
+                    "radii grow to at most this times their initial size (sizes the ghost cut-off of periodic runs)")
+                    .def("2").in(1, 10, true)}});
+  d.push_back({"radius_growth.phases", "radius_growth: {phases: [{...}, ...]}",
+               "One phase of a compression schedule, applied until the simulated time `until`; rate 0 holds the "
+               "radii fixed while the packing relaxes. E.g. fast growth to a dense fluid, slow growth until it jams, "
+               "decompression to a lower target, relaxation (cases/jam_frictionless).",
+               {key("rate", K::Number, "largest relative growth rate in this phase; 0: radii fixed")
+                    .req().si("1/s").in(0, inf),
+                key("target_overlap", K::Number, "overlap per particle the servo aims at").req().in(0, 0.1, true),
+                key("until", K::Number, "end of the phase (simulated time)").req().si("s").in(0, inf, true)}});
   d.push_back({"domain", "domain: {...}",
                "The box particles live in; a particle that leaves it through a non-periodic face is removed and "
                "counted in the summary. Through a periodic face it comes back at the opposite one, and contacts "

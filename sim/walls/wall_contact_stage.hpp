@@ -45,6 +45,10 @@ class PlaneWallStage final : public Stage {
     const int WH = p.wall_history_size();
     for (std::size_t w = 0; w < s.walls.planes.size(); ++w) {
       const PlaneWall& wall = s.walls.planes[w];
+      if (wall.finite()) {  // a disc or annulus (spheres only, checked at set-up)
+        run_finite(s, w);
+        continue;
+      }
       // Each particle appears once per wall: rows are independent.
       const auto& near = s.neighbors.plane_near[w];
       const auto nn = static_cast<std::ptrdiff_t>(near.size());
@@ -69,6 +73,29 @@ class PlaneWallStage final : public Stage {
         }
         WallContact<Law, Law::needs_rotation || Shapes>::apply(p, i, g, wall.velocity, s.pairs(p.material[i], wall.material), s.clock.dt, hist);
       });
+    }
+  }
+
+ private:
+  static void run_finite(Scene& s, std::size_t w) {
+    ParticleStore& p = s.particles;
+    constexpr int H = Law::history_size;
+    const int WH = p.wall_history_size();
+    const PlaneWall& wall = s.walls.planes[w];
+    const contact::Annulus a = wall.annulus();
+    const auto& near = s.neighbors.plane_near[w];
+    const auto nn = static_cast<std::ptrdiff_t>(near.size());
+#pragma omp parallel for schedule(static) if (s.deterministic)
+    for (std::ptrdiff_t m = 0; m < nn; ++m) {
+      const std::size_t i = near[static_cast<std::size_t>(m)];
+      double* hist = H > 0 ? p.wall_history.data() + static_cast<std::size_t>(i) * WH + wall.history_slot * H : nullptr;
+      contact::ContactGeometry g;
+      if (!contact::sphere_annulus(p.x[i], p.radius[i], a, g)) {
+        if constexpr (H > 0) std::fill_n(hist, H, 0.0);
+        continue;
+      }
+      WallContact<Law, Law::needs_rotation || Shapes>::apply(p, i, g, wall.velocity, s.pairs(p.material[i], wall.material),
+                                                            s.clock.dt, hist);
     }
   }
 };

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# The CI pour of the regression suite (3,000 frictional spheres, cases/pour_spheres
-# at CI size; serial value in tests/regression/test_pour_packing.cpp) run on
-# 2 MPI ranks and with 2 OpenMP threads (default force sums): the bulk
-# packing fraction must fall in the same documented band, [0.575, 0.615].
+# The CI pour of 3,000 frictional spheres (cases/pour_spheres at CI size, as
+# the mu = 0.5 point of the serial friction sweep in
+# tests/regression/test_packing.cpp, whose fill is a little lower: 6.2 cm)
+# run on 2 MPI ranks and with 2 OpenMP threads (default force sums): the bulk
+# packing fraction must fall in the same documented band, [0.575, 0.615]
+# (tests/regression/packing_references.yaml, pour_phi_mu05).
 #   ci_pour.sh GRAINS CASE WORKDIR
 set -euo pipefail
 grains=$1 case=$2 work=$3

@@ -48,7 +48,7 @@ for ar in $ARS; do for seed in $SEEDS; do echo "$ar $seed"; done; done |
   xargs -P "$JOBS" -n 2 bash -c 'run_one "$0" "$1"'
 
 python3 - "$WORK" "$ARS" "$SEEDS" <<'PY'
-import json, math, sys
+import json, math, os, sys
 work, ars, seeds = sys.argv[1], sys.argv[2].split(), sys.argv[3].split()
 print("aspect_ratio seed phi error nematic_S")
 mean, sem = {}, {}
@@ -79,5 +79,16 @@ for end in (lo, hi):
 if len(seeds) < 2:
     print("note: one seed only, the seed-to-seed spread is not in the error bars")
 print("non-monotonic (maximum at an interior aspect ratio):", "yes" if ok else "NO")
+# The record for docs/packing.md (tests/regression/make_packing_doc.sh).
+out = os.environ.get("GRAINS_RESULTS_DIR")
+if out:
+    nem = {ar: sum(json.load(open(f"{work}/ar{ar}_seed{s}/analysis/analysis.json"))["nematic"]["S"]
+                   for s in seeds) / len(seeds) for ar in ars}
+    rec = {"aspect_ratio": [float(a) for a in ars], "phi": [mean[a] for a in ars], "phi_se": [sem[a] for a in ars],
+           "nematic_S": [nem[a] for a in ars], "seeds": len(seeds), "seed_list": [int(s) for s in seeds],
+           "peak_aspect_ratio": float(peak), "non_monotonic": ok,
+           "rise_1p5": mean["1.5"] - mean["1"] if "1.5" in mean and "1" in mean else None}
+    os.makedirs(out, exist_ok=True)
+    json.dump(rec, open(os.path.join(out, "ellipsoid_sweep.json"), "w"), indent=1)
 sys.exit(0 if ok else 1)
 PY

@@ -18,6 +18,7 @@
 
 #include "postprocess/packing_fraction.hpp"
 #include "tests/physics/clump/clump_cases.hpp"
+#include "tests/regression/packing_support.hpp"
 
 namespace grains::test {
 namespace {
@@ -99,6 +100,7 @@ PourResult pour(const std::string& shape, double radius, double d_eq, int count,
 }
 
 TEST(ClumpRegression, DimersOfAspectRatio1p5PackDenserThanSpheres) {
+  const packing::Reference rise = packing::reference("dimer_rise");
   const double d = 0.001, w = 10 * d;
   const int n = 1200;
   const auto spheres = pour("{type: sphere}", d / 2, d, n, w, 0.45);
@@ -115,7 +117,12 @@ TEST(ClumpRegression, DimersOfAspectRatio1p5PackDenserThanSpheres) {
   EXPECT_LT(dimers.speed, 0.02);
   EXPECT_GT(spheres.phi, 0.60);
   EXPECT_LT(spheres.phi, 0.66);
-  EXPECT_GT(dimers.phi, spheres.phi + 0.015);
+  packing::record("dimer_ci", packing::Record()
+                                 .str("case", "1,200 frictionless spheres or dimers (aspect 1.5), e = 0.1")
+                                 .num("phi_spheres", spheres.phi)
+                                 .num("phi_dimers", dimers.phi)
+                                 .num("rise", dimers.phi - spheres.phi));
+  packing::expect_in_band(rise, dimers.phi - spheres.phi, "dimers - spheres");
 }
 
 }  // namespace
