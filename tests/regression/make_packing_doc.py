@@ -287,7 +287,7 @@ def main():
                  f"{rec['exponent']:.2f} ± {rec['se_exponent']:.2f}" +
                  (f"; C with k = 1.5: {rec['C_fixed_k']:.3f}" if "C_fixed_k" in rec else "") + ".\n")
     L.append("The grains pass the orifice nearly at random: over a window holding N grains the rate is known "
-             "to about 1/√N (8–10 % over 30 ms bins, measured), which is why the CI, with a few hundred grains "
+             "to about 1/√N, which is why the CI, with a few hundred grains "
              "at the smallest orifice, checks C with the published k and the 5/2 exponent, and leaves the "
              "two-parameter fit to the long run.\n")
     L.append("## Jamming of frictionless spheres\n")
