@@ -1,5 +1,8 @@
 #include "sim/neighbor/neighbor_stage.hpp"
 
+#include <algorithm>
+#include <vector>
+
 #include "sim/parallel/exchange.hpp"
 
 namespace grains::sim {
@@ -7,8 +10,9 @@ namespace grains::sim {
 namespace {
 
 // Particles that left the domain (through a non-periodic face) are removed
-// and counted in the summary; a clump leaves as a whole.
-void remove_lost(Scene& s) {
+// and counted in the summary; a clump leaves as a whole. `per_particle`
+// (owned values) is compacted alongside.
+void remove_lost(Scene& s, std::vector<double>& per_particle) {
   auto& p = s.particles;
   std::vector<char> out(p.n_owned(), 0);
   bool any = false;
@@ -29,7 +33,12 @@ void remove_lost(Scene& s) {
       }
     s.bodies.remove_if(gone);
   }
-  if (any) p.remove_if(out);
+  if (!any) return;
+  p.remove_if(out);
+  std::size_t m = 0;
+  for (std::size_t i = 0; i < per_particle.size() && i < out.size(); ++i)
+    if (!out[i]) per_particle[m++] = per_particle[i];
+  per_particle.resize(std::min(m, per_particle.size()));
 }
 
 }  // namespace
@@ -47,13 +56,16 @@ void NeighborStage::run(Scene& s) {
 
 void NeighborStage::full_update(Scene& s, bool sort) {
   auto& p = s.particles;
+  // The work estimate for the load balance needs the old list with its ghosts.
+  std::vector<double> work;
+  if (s.exchange && s.exchange->comm().parallel()) work = Exchange::work_weights(p, s.neighbors);
   p.clear_ghosts();
-  remove_lost(s);
+  remove_lost(s, work);
   if (!s.exchange) {
     s.neighbors.build(p, s.walls, s.domain.lo, s.domain.hi, s.clock.time, sort);
     return;
   }
-  s.exchange->migrate(s);
+  s.exchange->migrate(s, &work);
   if (sort) s.neighbors.sort_by_cell(p, s.domain.lo, s.domain.hi);
   s.exchange->build_ghosts(p);
   s.neighbors.build(p, s.walls, s.domain.lo, s.domain.hi, s.clock.time, false);

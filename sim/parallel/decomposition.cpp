@@ -97,7 +97,7 @@ Vec3 Decomposition::hi(int rank) const {
   return {cuts_[0][c[0] + 1], cuts_[1][c[1] + 1], cuts_[2][c[2] + 1]};
 }
 
-bool Decomposition::balance(const std::vector<Vec3>& x, std::size_t n, const Comm& comm) {
+bool Decomposition::balance(const std::vector<Vec3>& x, std::size_t n, const Comm& comm, const double* weight) {
   constexpr int kBins = 2048;
   bool changed = false;
   for (int k = 0; k < 3; ++k) {
@@ -106,7 +106,7 @@ bool Decomposition::balance(const std::vector<Vec3>& x, std::size_t n, const Com
     std::vector<double> h(kBins, 0.0);
     for (std::size_t i = 0; i < n; ++i) {
       const int b = std::clamp(static_cast<int>((x[i][k] - lo_[k]) / L * kBins), 0, kBins - 1);
-      h[static_cast<std::size_t>(b)] += 1;
+      h[static_cast<std::size_t>(b)] += weight ? weight[i] : 1.0;
     }
     comm.sum_in_place(h);
     double total = 0;
@@ -136,7 +136,10 @@ bool Decomposition::balance(const std::vector<Vec3>& x, std::size_t n, const Com
 }
 
 double Decomposition::imbalance(std::size_t n_owned, const Comm& comm) {
-  const double n = static_cast<double>(n_owned);
+  return imbalance(static_cast<double>(n_owned), comm);
+}
+
+double Decomposition::imbalance(double n, const Comm& comm) {
   const double mx = comm.max(n), total = comm.sum(n);
   return total > 0 ? mx / (total / comm.size()) : 1.0;
 }

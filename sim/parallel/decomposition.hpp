@@ -39,10 +39,14 @@ class Decomposition {
   double min_width() const { return min_width_; }
 
   /// Moves the cuts to quantiles of the owned positions of all ranks
-  /// (a histogram reduced over ranks). Returns true when cuts changed.
-  bool balance(const std::vector<Vec3>& x, std::size_t n, const Comm& comm);
-  /// Largest owned count over the mean (1 = perfect balance).
+  /// (a histogram reduced over ranks), each position counted with its
+  /// weight (its estimated work; 1 each when weight is null). Returns true
+  /// when cuts changed.
+  bool balance(const std::vector<Vec3>& x, std::size_t n, const Comm& comm, const double* weight = nullptr);
+  /// Largest load over the mean (1 = perfect balance); load = owned count.
   static double imbalance(std::size_t n_owned, const Comm& comm);
+  /// The same for a load given as a number (e.g. the summed work weights).
+  static double imbalance(double load, const Comm& comm);
   std::string describe() const;
 
  private:

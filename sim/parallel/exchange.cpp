@@ -91,14 +91,43 @@ void Exchange::distribute_initial(Scene& s) {
   stats_.imbalance = Decomposition::imbalance(p.n_owned(), comm_);
 }
 
-void Exchange::migrate(Scene& s) {
+std::vector<double> Exchange::work_weights(const ParticleStore& p, const NeighborList& list) {
+  const std::size_t n = p.n_owned();
+  std::vector<double> w(n, 1.0);
+  const std::size_t rows = list.row_start.empty() ? 0 : list.row_start.size() - 1;
+  // A list from before the last change of the particle set (a restart, the
+  // first update) does not describe these particles: count them alone.
+  if (rows == 0 || rows != p.size() || list.partner.size() != list.row_start.back()) return w;
+  for (std::size_t r = 0; r < rows; ++r)
+    for (auto k = list.row_start[r]; k < list.row_start[r + 1]; ++k) {
+      const std::size_t j = list.partner[k];
+      const bool ro = r < n, jo = j < n;
+      if (ro && jo) {
+        w[r] += 0.5;
+        w[j] += 0.5;
+      } else if (ro) {
+        w[r] += 1;
+      } else if (jo) {
+        w[j] += 1;
+      }
+    }
+  return w;
+}
+
+void Exchange::migrate(Scene& s, const std::vector<double>* work) {
   auto& p = s.particles;
   auto& b = s.bodies;
   ++stats_.full_updates;
   wrap(s);
   if (!comm_.parallel()) return;
-  stats_.imbalance = Decomposition::imbalance(p.n_owned(), comm_);
-  if (stats_.imbalance > opt_.balance_threshold && dec_.balance(p.x, p.n_owned(), comm_)) ++stats_.rebalances;
+  const double* w = work && work->size() == p.n_owned() ? work->data() : nullptr;
+  double load = static_cast<double>(p.n_owned());
+  if (w) {
+    load = 0;
+    for (std::size_t i = 0; i < p.n_owned(); ++i) load += w[i];
+  }
+  stats_.imbalance = Decomposition::imbalance(load, comm_);
+  if (stats_.imbalance > opt_.balance_threshold && dec_.balance(p.x, p.n_owned(), comm_, w)) ++stats_.rebalances;
 
   const int me = comm_.rank();
   const auto P = static_cast<std::size_t>(comm_.size());

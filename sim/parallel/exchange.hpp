@@ -31,7 +31,7 @@ namespace grains::sim {
 
 struct ExchangeOptions {
   std::array<int, 3> dims{0, 0, 0};  // requested rank grid (0: choose)
-  double balance_threshold = 1.2;    // rebalance when max/mean owned > this
+  double balance_threshold = 1.1;    // rebalance when max/mean work per rank > this
 };
 
 class Exchange {
@@ -40,7 +40,7 @@ class Exchange {
     long full_updates = 0, rebalances = 0;
     std::int64_t migrated = 0;  // particles sent to another rank, summed over updates
     std::size_t ghosts = 0;     // after the last full update
-    double imbalance = 1;       // max/mean owned particles at the last full update
+    double imbalance = 1;       // max/mean estimated work per rank at the last full update
   };
 
   /// `cutoff`: the ghost cut-off (largest pair cut-off 2 r_max + skin, plus
@@ -57,8 +57,16 @@ class Exchange {
   void distribute_initial(Scene& s);
   /// Wraps periodic positions, rebalances when needed and migrates owned
   /// particles and bodies (with contact histories) to their owners. No
-  /// ghosts may be present.
-  void migrate(Scene& s);
+  /// ghosts may be present. `work`: estimated cost of each owned particle
+  /// (work_weights()), or null to count particles.
+  void migrate(Scene& s, const std::vector<double>* work = nullptr);
+  /// Estimated cost per step of each owned particle from the last list:
+  /// one unit for the particle's own updates plus one per list entry it
+  /// takes part in (half of an entry between two owned particles, a whole
+  /// one against a ghost, which this rank computes alone). Measured on the
+  /// 10k pour: a list entry costs about as much as a particle's integration
+  /// and wall checks (bench/RESULTS.md). Call before ghosts are cleared.
+  static std::vector<double> work_weights(const ParticleStore& p, const NeighborList& list);
   /// Builds the ghosts and remembers the send lists.
   void build_ghosts(ParticleStore& p);
   /// Refreshes the ghosts' kinematics along the send lists.

@@ -102,7 +102,7 @@ struct ArkodeConfig {
 struct ParallelConfig {
   bool deterministic = false;        // ordered force sums even with one thread
   std::array<int, 3> dims{0, 0, 0};  // rank grid; 0 = chosen from the domain shape
-  double balance_threshold = 1.2;    // rebalance when max/mean owned particles exceeds it
+  double balance_threshold = 1.1;    // rebalance when max/mean estimated work per rank exceeds it
   std::string where;                 // case-file location, for messages
 };
 

@@ -155,8 +155,8 @@ std::vector<EffectDoc> scene_docs() {
                     "ordered force sums with one thread too: results bitwise identical for any thread and rank "
                     "count (non-periodic scenes)").def("false"),
                 key("decomposition", K::Vec3, "rank grid [nx, ny, nz] (product = number of ranks)").def("chosen"),
-                key("balance_threshold", K::Number, "rebalance when max/mean particles per rank exceeds this")
-                    .def("1.2").in(1, 100)}});
+                key("balance_threshold", K::Number, "rebalance when max/mean estimated work per rank (particles + their neighbour-list entries) exceeds this")
+                    .def("1.1").in(1, 100)}});
   return d;
 }
 

@@ -5,7 +5,9 @@
 
 #include <random>
 
+#include "sim/neighbor/neighbor_list.hpp"
 #include "sim/parallel/decomposition.hpp"
+#include "sim/parallel/exchange.hpp"
 #include "sim/scene/scene.hpp"
 
 namespace grains::sim {
@@ -87,6 +89,48 @@ TEST(Decomposition, BalanceKeepsTheMinimumWidth) {
   d.balance(x, x.size(), one);
   const auto& z = d.cuts()[2];
   for (std::size_t k = 1; k < z.size(); ++k) EXPECT_GE(z[k] - z[k - 1], 0.2 - 1e-12);
+}
+
+TEST(Decomposition, BalanceFollowsTheWorkWeights) {
+  // Uniform in z, but the lower half three times as costly: the cut of two
+  // ranks goes where the work halves, z = 1/3, not at the median z = 1/2.
+  Decomposition d(box({1, 1, 1}), 2, 0.05);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec3> x;
+  std::vector<double> w;
+  for (int i = 0; i < 40000; ++i) {
+    x.emplace_back(u(rng), u(rng), u(rng));
+    w.push_back(x.back().z() < 0.5 ? 3.0 : 1.0);
+  }
+  const Comm one;
+  EXPECT_TRUE(d.balance(x, x.size(), one, w.data()));
+  EXPECT_NEAR(d.cuts()[2][1], 1.0 / 3.0, 0.01);
+  EXPECT_TRUE(d.balance(x, x.size(), one));
+  EXPECT_NEAR(d.cuts()[2][1], 0.5, 0.01);
+}
+
+TEST(Exchange, WorkWeightsCountTheListEntriesOfEachParticle) {
+  // A chain of three touching spheres and a lone one: the middle sphere
+  // takes part in two entries, the ends in one, the lone one in none; an
+  // entry between two owned particles counts half for each.
+  ParticleStore p;
+  p.configure(FieldSet{}, 0);
+  for (int i = 0; i < 3; ++i) p.add(i, Vec3(0.1 + 0.1 * i, 0.5, 0.5), Vec3::Zero(), 0.05, 1.0, 0);
+  p.add(3, Vec3(0.9, 0.9, 0.9), Vec3::Zero(), 0.05, 1.0, 0);
+  NeighborList nl;
+  nl.configure(0, 0.01);
+  Walls walls;
+  // Before any build the list says nothing: one unit each; a rank without
+  // particles has no weights.
+  EXPECT_EQ(Exchange::work_weights(p, nl), std::vector<double>(4, 1.0));
+  EXPECT_TRUE(Exchange::work_weights(ParticleStore{}, nl).empty());
+  nl.build(p, walls, Vec3(0, 0, 0), Vec3(1, 1, 1), 0, false);
+  std::vector<double> by_id(4);
+  const auto w = Exchange::work_weights(p, nl);
+  ASSERT_EQ(w.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) by_id[static_cast<std::size_t>(p.id[i])] = w[i];
+  EXPECT_EQ(by_id, (std::vector<double>{1.5, 2.0, 1.5, 1.0}));
 }
 
 }  // namespace
