@@ -28,6 +28,63 @@ ContactGeometry ellipsoid_plane_contact(const Ellipsoid& body, const PlaneWall& 
   return g;
 }
 
+namespace {
+
+// The post: closest point of the shadow ellipse (principal frame v0, v1,
+// semi-axes b0 >= b1, centre cp relative to the axis) to the axis.
+ContactGeometry outside_cylinder(const Ellipsoid& body, const CylinderWall& wall, const SymMat3& q,
+                                 const Vector3d& t1, const Vector3d& t2, const Vector2d& v0, const Vector2d& v1,
+                                 const double (&cp)[2], const double (&b)[2], double b0sq_minus_b1sq,
+                                 bool* touching) {
+  // The axis seen from the ellipse centre, y = -cp; work with lengths of
+  // order one (the answer is homogeneous of degree one).
+  const double scale = b[0];
+  const double e[2] = {1.0, b[1] / scale};
+  const double y[2] = {-cp[0] / scale, -cp[1] / scale};
+  // Multiplier referred to the smaller axis (secular_equation.hpp):
+  // x_i = e_i^2 y_i / (s + d_i), d_i = e_i^2 - e_1^2.
+  const double d[2] = {b0sq_minus_b1sq / (scale * scale), 0.0};
+  const double alpha[2] = {e[0] * std::abs(y[0]), e[1] * std::abs(y[1])};
+  const double s = secular_root(alpha, d);
+  double x[2];
+  if (s > 0.0) {
+    x[0] = e[0] * e[0] * y[0] / (s + d[0]);
+    x[1] = e[1] * e[1] * y[1] / s;
+  } else {
+    // Axis inside the ellipse on its major axis line: the closest boundary
+    // points are symmetric about it; take the +v1 one.
+    x[0] = d[0] > 0.0 ? e[0] * e[0] * y[0] / d[0] : 0.0;
+    x[1] = e[1] * std::sqrt(std::max(0.0, 1.0 - x[0] * x[0]));
+  }
+  const double inside_ellipse = (y[0] / e[0]) * (y[0] / e[0]) + (y[1] / e[1]) * (y[1] / e[1]);
+  const double dist = std::hypot(y[0] - x[0], y[1] - x[1]) * scale;
+  const double signed_distance = inside_ellipse < 1.0 ? -dist : dist;
+  // Outward normal of the ellipse at x (principal frame), lifted to 3D.
+  Vector2d n2(x[0] / (e[0] * e[0]), x[1] / (e[1] * e[1]));
+  n2 = (n2[0] * v0 + n2[1] * v1).normalized();
+  const Vector3d n = n2[0] * t1 + n2[1] * t2;  // body's outward normal, towards the axis
+  const Vector3d qn = form_times(q, n);
+  const double h = std::sqrt(n.dot(qn));
+  const Vector3d contact_on_body = body.centre + qn / h;
+  ContactGeometry g;
+  g.normal = -n;
+  g.overlap = wall.radius - signed_distance;
+  g.point = contact_on_body - 0.5 * g.overlap * n;
+  const Vector3d& dax = wall.axis;
+  const Vector3d circ = dax.cross(n);
+  const Eigen::Matrix2d k_body = curvature_tensor(q, n, dax, circ);
+  Eigen::Matrix2d k = k_body;
+  k(1, 1) += 1.0 / wall.radius;  // convex post
+  g.radius = hertz_radius(k);
+  if (touching) {
+    const double zc = (contact_on_body - wall.axis_point).dot(dax);
+    *touching = g.overlap > 0.0 && zc >= wall.z_min && zc <= wall.z_max;
+  }
+  return g;
+}
+
+}  // namespace
+
 ContactGeometry ellipsoid_cylinder_contact(const Ellipsoid& body, const CylinderWall& wall,
                                            bool* touching) {
   const SymMat3 q = body.form();
@@ -47,6 +104,7 @@ ContactGeometry ellipsoid_cylinder_contact(const Ellipsoid& body, const Cylinder
   const Vector2d v0(std::cos(theta), std::sin(theta)), v1(-v0[1], v0[0]);
   const double cp[2] = {c.dot(v0), c.dot(v1)};
   const double b[2] = {std::sqrt(b0sq), std::sqrt(b1sq)};
+  if (!wall.inside) return outside_cylinder(body, wall, q, t1, t2, v0, v1, cp, b, 2.0 * rad, touching);
   // Farthest point c + z: z_i = b_i^2 cp_i / (s + d_i), d_i = b0^2 - b_i^2.
   const double dd[2] = {0.0, 2.0 * rad};
   const double alpha[2] = {b[0] * std::abs(cp[0]), b[1] * std::abs(cp[1])};

@@ -20,6 +20,17 @@
 // container), and the wall's curvature -1/R_c around the circumference enters
 // R*. Contacts whose point lies outside [z_min, z_max] along the axis are
 // reported as not touching (the end caps are planes).
+//
+// Outside of the cylinder (a post, inside = false): a cylinder is a disc in
+// the plane normal to its axis, so the contact is the sphere-ellipsoid one of
+// that plane — the point x* of the shadow ellipse closest to the axis (the
+// same secular equation, closest instead of farthest point, inside or
+// outside the ellipse), n = the ellipse's outward normal there (lifted to 3D,
+// pointing towards the axis), the contact point on the body its support point
+// along n, overlap = R_c - (signed distance from the axis to the ellipse:
+// negative when the axis pierces the body, so the overlap grows continuously
+// and the push stays along -n), normal = -n (from the post into the body),
+// and the wall's curvature +1/R_c around the circumference enters R*.
 #include <Eigen/Core>
 
 #include "contact/contact_geometry.hpp"
@@ -37,6 +48,7 @@ struct CylinderWall {
   Eigen::Vector3d axis{0, 0, 1};  // unit
   double radius = 1.0;
   double z_min = -1e300, z_max = 1e300;  // extent along the axis from axis_point
+  bool inside = true;  // particles held inside (a silo) or kept outside (a post)
 };
 
 // Body i = ellipsoid, body j = wall; the normal points from the wall into the

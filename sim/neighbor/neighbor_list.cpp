@@ -188,8 +188,17 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
     s.t_max += skin_;
     s.radius += s.inside ? -skin_ : skin_;
     contact::ContactGeometry g;
-    for (std::size_t i = 0; i < n_own; ++i)
-      if (contact::sphere_cylinder(p.x[i], p.radius[i], s, g)) cylinder_near[w].push_back(static_cast<std::uint32_t>(i));
+    // A non-spherical particle (radius = its bounding sphere) may touch the
+    // wall at a point up to its radius along the axis from its centre.
+    const bool shapes = p.fields().has(Field::SemiAxes);
+    for (std::size_t i = 0; i < n_own; ++i) {
+      auto si = s;
+      if (shapes) {
+        si.t_min -= p.radius[i];
+        si.t_max += p.radius[i];
+      }
+      if (contact::sphere_cylinder(p.x[i], p.radius[i], si, g)) cylinder_near[w].push_back(static_cast<std::uint32_t>(i));
+    }
   }
 
   x_build_.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(n_own));

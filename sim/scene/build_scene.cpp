@@ -192,11 +192,6 @@ Scene build_scene(SceneConfig& c) {
       if (w.finite())
         throw SetupError("wall '" + w.name + "': ellipsoids against a finite plane (hole_radius or radius) are not "
                          "supported; use an infinite plane or spheres");
-  if (need.ellipsoids)
-    for (const auto& w : s.walls.cylinders)
-      if (!w.surface.inside)
-        throw SetupError("wall '" + w.name + "': ellipsoids against the outside of a cylinder are not supported; "
-                         "use inside: true or spheres");
 
   if (need.clumps) place_clump_balls(s.particles, s.bodies, true);
   double rmax = 0;

@@ -123,10 +123,10 @@ class CylinderWallStage final : public Stage {
         bool touching;
         if constexpr (Shapes) {
           if (p.shape[i] == kEllipsoid) {
-            const auto& c = wall.surface;  // inside cylinders only (checked at set-up)
-            g = contact::ellipsoid_cylinder_contact({p.x[i], p.semi_axes[i], p.orientation[i]},
-                                                    contact::CylinderWall{c.base, c.axis, c.radius, c.t_min, c.t_max},
-                                                    &touching);
+            const auto& c = wall.surface;
+            g = contact::ellipsoid_cylinder_contact(
+                {p.x[i], p.semi_axes[i], p.orientation[i]},
+                contact::CylinderWall{c.base, c.axis, c.radius, c.t_min, c.t_max, c.inside}, &touching);
           } else {
             touching = contact::sphere_cylinder(p.x[i], p.radius[i], wall.surface, g);
           }
