@@ -57,4 +57,16 @@ E=$(best ellipsoids "$ELL_CASE" "${ELL_SET[@]}")
 echo "spheres:    $S particle-steps/s"
 echo "ellipsoids: $E particle-steps/s (aspect ratio $AR)"
 python3 -c "print('ratio ellipsoid/sphere: %.3f (1/%.1f)' % ($E/$S, $S/$E))"
+# Cost of the pair stage per neighbour-list pair and step (last run of each).
+per_pair() {
+  python3 - "$WORK/$1/summary.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+t = sum(v for k, v in s["stage_seconds"].items() if "pair" in k or "ellipsoid" in k)
+n = s["neighbor_pairs_per_step"] * s["steps"]
+print("%.1f ns per neighbour pair and step (%.0f pairs per step, pair stage %.2f s)" % (1e9 * t / n, s["neighbor_pairs_per_step"], t) if n > 0 else "no pairs")
+PY
+}
+echo "spheres pair stage:    $(per_pair spheres)"
+echo "ellipsoids pair stage: $(per_pair ellipsoids)"
 echo "== load after: $(cut -d' ' -f1-3 /proc/loadavg)"

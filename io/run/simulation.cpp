@@ -225,7 +225,8 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
     if (auto* m = find_stage<MassOutput>(s)) m->write_row(s.scene);
   }
   r.particles_start = s.scene.particles.n_owned();
-  double particle_steps = 0;
+  double particle_steps = 0, pair_steps = 0;  // summed over steps: owned particles, list entries
+  double steps_run = 0;
   {
     SignalGuard guard(opt.handle_signals);
     try {
@@ -235,6 +236,8 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
       while (s.scene.clock.step < s.scene.clock.n_steps && !stop()) {
         particle_steps += static_cast<double>(s.scene.particles.n_owned());
         s.pipeline.step(s.scene);
+        pair_steps += static_cast<double>(s.scene.neighbors.partner.size());
+        steps_run += 1;
       }
       if (stop()) {
         r.signal = g_signal != 0 ? static_cast<int>(g_signal) : SIGTERM;
@@ -272,6 +275,7 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
   r.steps = s.scene.clock.step;
   r.simulated_time = s.scene.clock.time;
   particle_steps = comm.sum(particle_steps);
+  pair_steps = comm.sum(pair_steps);
   r.particles_start = static_cast<std::size_t>(comm.sum(static_cast<std::int64_t>(r.particles_start)));
   r.particle_steps_per_second = r.wall_seconds > 0 ? particle_steps / r.wall_seconds : 0;
   r.particles_end = static_cast<std::size_t>(comm.sum(static_cast<std::int64_t>(s.scene.particles.n_owned())));
@@ -290,7 +294,8 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
     << "  \"particle_steps_per_second\": " << r.particle_steps_per_second << ",\n"
     << "  \"particles_start\": " << r.particles_start << ",\n  \"particles_end\": " << r.particles_end << ",\n"
     << "  \"lost_particles\": " << r.lost_particles << ",\n  \"neighbor_builds\": " << r.neighbor_builds << ",\n"
-    << "  \"frames\": " << r.frames << ",\n"
+    << "  \"neighbor_pairs_per_step\": " << (steps_run > 0 ? pair_steps / steps_run : 0.0)
+    << ",\n  \"frames\": " << r.frames << ",\n"
     << "  \"mpi_ranks\": " << comm.size() << ",\n  \"omp_threads\": " << omp_get_max_threads() << ",\n"
     << "  \"deterministic\": " << (s.scene.deterministic ? "true" : "false") << ",\n";
   if (s.scene.exchange) {
