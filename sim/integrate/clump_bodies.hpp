@@ -102,8 +102,8 @@ class ClumpDrift final : public Stage {
     for (std::size_t k = 0; k < b.size(); ++k) {
       b.x[k] += dt * b.v[k];
       const Vec3& L = b.angular_momentum[k];
-      const Quat q_half = rotate(b.orientation[k], b.omega[k], 0.5 * dt);
-      const Vec3 w_mid = angular_velocity(q_half, b.inertia[k], L);
+      const Vec3 w_mid = half_step_angular_velocity(b.orientation[k].toRotationMatrix(), b.inertia[k].cwiseInverse(), L,
+                                                    0.5 * dt);
       b.orientation[k] = rotate(b.orientation[k], w_mid, dt);
       b.omega[k] = angular_velocity(b.orientation[k], b.inertia[k], L);
     }

@@ -8,11 +8,18 @@
 //
 //   kick:   v += dt/2 F/m,  L += dt/2 T
 //   drift:  x += dt v
-//           q_half = exp(dt/2 w(q, L)) q;  w_mid = w(q_half, L);  q += exp(dt w_mid) q
-// The rotation is the implicit-midpoint free rotation (one fixed-point
-// iteration), second order like the translation. L is constant during the
-// drift, as it is for a torque-free body, so the drift conserves L exactly and
-// the kinetic energy to second order. Each rotation is applied as an exact
+//           w_mid = R (w_b + dt/2 I^-1 (L_b x w_b)),  L_b = R^T L, w_b = I^-1 L_b
+//           q <- exp(dt w_mid) q
+// The rotation is a midpoint rule: the angular velocity at the half step
+// comes from Euler's equations of the free body (I dw_b/dt = L_b x w_b in
+// the body frame), to first order in dt, which keeps the rotation second
+// order like the translation. (It replaced an implicit-midpoint step with
+// one fixed-point iteration, which needed a second rotation and rotation
+// matrix per body: the same order, 30 % more time in the ellipsoid drift;
+// the torque-free top's worst energy error over 10^6 steps went from 4e-8
+// to 1e-7, tests/physics.) L is constant during the drift, as it is for a
+// torque-free body, so the drift conserves L exactly and the kinetic energy
+// to second order. Each rotation is applied as an exact
 // unit quaternion and the product is renormalised, so |q| = 1 to rounding at
 // every step (tested over 10^6 steps). After the drift the PW85 form
 // Q = R diag(a^2) R^T of every ellipsoid is refreshed for the force phase.
@@ -56,6 +63,15 @@ inline Quat rotate(const Quat& q, const Vec3& w, double dt) {
   return out;
 }
 
+/// World-frame angular velocity at the middle of a drift of length 2 half_dt
+/// that starts at rotation R0 (see above); inv_inertia = 1 / principal moments.
+inline Vec3 half_step_angular_velocity(const Eigen::Matrix3d& R0, const Vec3& inv_inertia, const Vec3& L,
+                                       double half_dt) {
+  const Vec3 Lb = R0.transpose() * L;
+  const Vec3 wb = Lb.cwiseProduct(inv_inertia);
+  return R0 * (wb + half_dt * Lb.cross(wb).cwiseProduct(inv_inertia));
+}
+
 inline void rigid_half_kick(ParticleStore& p, double half_dt) {
   const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
   parallel_for(use_threads(n, 1024), n, [&](std::ptrdiff_t i) {
@@ -89,12 +105,8 @@ class RigidBodyDrift final : public Stage {
       const Vec3 inv_inertia = p.inertia[i].cwiseInverse();
       const Quat q0 = p.orientation[i];
       const Eigen::Matrix3d R0 = q0.toRotationMatrix();
-      const Vec3 w0 = R0 * (R0.transpose() * L).cwiseProduct(inv_inertia);
       p.x[i] += dt * p.v[i];
-      const Quat q_half = rotate(q0, w0, half_dt);
-      const Eigen::Matrix3d Rh = q_half.toRotationMatrix();
-      const Vec3 w_mid = Rh * (Rh.transpose() * L).cwiseProduct(inv_inertia);
-      p.orientation[i] = rotate(q0, w_mid, dt);
+      p.orientation[i] = rotate(q0, half_step_angular_velocity(R0, inv_inertia, L, half_dt), dt);
       // One rotation matrix for both the new omega and the PW85 form.
       const Eigen::Matrix3d R = p.orientation[i].toRotationMatrix();
       p.omega[i] = R * (R.transpose() * L).cwiseProduct(inv_inertia);
