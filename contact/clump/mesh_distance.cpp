@@ -43,6 +43,17 @@ double box_dist2(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eige
   return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).squaredNorm();
 }
 
+// Solid angle of triangle abc seen from p (Van Oosterom & Strackee 1983).
+double solid_angle(const Eigen::Vector3d& p, const Eigen::Vector3d& va, const Eigen::Vector3d& vb,
+                   const Eigen::Vector3d& vc) {
+  const Eigen::Vector3d a = va - p, b = vb - p, c = vc - p;
+  const double la = a.norm(), lb = b.norm(), lc = c.norm();
+  const double det = a.dot(b.cross(c));
+  const double den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+  return 2.0 * std::atan2(det, den);
+}
+
+
 }  // namespace
 
 MeshDistance::MeshDistance(const mesh::TriangleMesh& mesh) : vertices_(mesh.vertices), faces_(mesh.faces) {
@@ -74,7 +85,41 @@ MeshDistance::MeshDistance(const mesh::TriangleMesh& mesh) : vertices_(mesh.vert
   order_.resize(nf);
   for (size_t i = 0; i < nf; ++i) order_[i] = static_cast<int>(i);
   nodes_.reserve(2 * nf / 4 + 2);
-  if (nf > 0) build(0, static_cast<int>(nf));
+  if (nf > 0) {
+    build(0, static_cast<int>(nf));
+    build_far_field(0);
+  }
+}
+
+void MeshDistance::build_far_field(int id) {
+  Eigen::Vector3d area = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
+  double total = 0.0;
+  const Node n = nodes_[id];
+  if (n.left < 0) {
+    for (int i = n.begin; i < n.end; ++i) {
+      const auto& t = faces_[order_[i]];
+      const Eigen::Vector3d a = 0.5 * (vertices_[t[1]] - vertices_[t[0]]).cross(vertices_[t[2]] - vertices_[t[0]]);
+      const double w = a.norm();
+      area += a;
+      moment += w * (vertices_[t[0]] + vertices_[t[1]] + vertices_[t[2]]) / 3.0;
+      total += w;
+    }
+  } else {
+    build_far_field(n.left);
+    build_far_field(n.right);
+    for (int c : {n.left, n.right}) {
+      const Node& k = nodes_[c];
+      area += k.area_vector;
+      moment += k.area * k.centroid;
+      total += k.area;
+    }
+  }
+  Node& m = nodes_[id];
+  m.area_vector = area;
+  m.area = total;
+  m.centroid = total > 0.0 ? Eigen::Vector3d(moment / total) : Eigen::Vector3d(0.5 * (m.lo + m.hi));
+  // Radius of a sphere about the centroid holding the node's box.
+  m.radius = (m.lo - m.centroid).cwiseAbs().cwiseMax((m.hi - m.centroid).cwiseAbs()).norm();
 }
 
 int MeshDistance::build(int begin, int end) {
@@ -170,12 +215,33 @@ double MeshDistance::winding_number(const Eigen::Vector3d& p) const {
   // Van Oosterom & Strackee (1983): tan(Omega / 2) = det[a b c] /
   // (|a||b||c| + (a.b)|c| + (b.c)|a| + (c.a)|b|), a, b, c the corners relative to p.
   double sum = 0.0;
-  for (const auto& t : faces_) {
-    const Eigen::Vector3d a = vertices_[t[0]] - p, b = vertices_[t[1]] - p, c = vertices_[t[2]] - p;
-    const double la = a.norm(), lb = b.norm(), lc = c.norm();
-    const double det = a.dot(b.cross(c));
-    const double den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
-    sum += 2.0 * std::atan2(det, den);
+  for (const auto& t : faces_) sum += solid_angle(p, vertices_[t[0]], vertices_[t[1]], vertices_[t[2]]);
+  return sum / (4.0 * M_PI);
+}
+
+double MeshDistance::winding_number_fast(const Eigen::Vector3d& p, double beta) const {
+  if (nodes_.empty()) return 0.0;
+  double sum = 0.0;
+  int stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    const Eigen::Vector3d r = n.centroid - p;
+    const double d2 = r.squaredNorm();
+    if (d2 > beta * beta * n.radius * n.radius) {
+      sum += r.dot(n.area_vector) / (d2 * std::sqrt(d2));
+      continue;
+    }
+    if (n.left < 0) {
+      for (int i = n.begin; i < n.end; ++i) {
+        const auto& t = faces_[order_[i]];
+        sum += solid_angle(p, vertices_[t[0]], vertices_[t[1]], vertices_[t[2]]);
+      }
+      continue;
+    }
+    stack[top++] = n.left;
+    stack[top++] = n.right;
   }
   return sum / (4.0 * M_PI);
 }
