@@ -111,7 +111,11 @@ std::vector<double> SceneOverlap::field(const BallSet& shape, const std::array<d
   so.tolerance = std::clamp(opt_.tolerance, 1e-14, 1e-2);
   so.upsampling = opt_.upsampling;
   so.threads = opt_.threads;
-  const HalfSpectrum gs = ball_spectrum(BallSet{rc, shape.radii, shape.weights}, shape_box, info_.max_mode, so);
+  // A grain's few balls: summed directly (exact, and cheaper than a
+  // spreading pass and a fine-grid FFT per radius); many balls: the NUFFT.
+  const BallSet rotated{rc, shape.radii, shape.weights};
+  const HalfSpectrum gs = shape.size() <= 64 ? ball_spectrum_direct(rotated, shape_box, info_.max_mode, opt_.threads)
+                                             : ball_spectrum(rotated, shape_box, info_.max_mode, so);
   HalfSpectrum prod = scene_;
   const double inv_vol = 1.0 / box_.volume();
   auto& a = prod.data();

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 
 #include "contact/correlation/ball_kernels.hpp"
 #include "contact/correlation/overlap_field.hpp"
@@ -194,7 +195,7 @@ void run_fft(Job& j, const SceneGrains& scene, int threads) {
   };
   for (std::size_t i = 0; i < scene.ell_x.size(); ++i) push_ellipsoid(scene.ell_x[i], scene.ell_axes[i], scene.ell_q[i]);
 
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> cand;  // (node, orientation)
+  std::vector<std::uint32_t> cand, near;  // nodes: free, near-free
   std::vector<Quat> orient;
   std::vector<double> field;
   const bool spin = c.grains.shape.kind != ShapeConfig::Kind::Sphere && c.grains.shape.random_orientation;
@@ -222,37 +223,60 @@ void run_fft(Job& j, const SceneGrains& scene, int threads) {
     for (std::size_t i = 0; i < br.size(); ++i) add_ball(sb, bx[i], round_up_radius(br[i], r0), reach, j.domain, lo, hi);
     // Threshold: half the smallest lens a touching grain makes once inflated.
     const double threshold = 0.5 * gc::lens_volume(r0 + s_ref, r0, s_ref + delta);
-    const auto tf = Clock::now();
+    // A free position off the nodes: the nearest node is within h sqrt(3)/2,
+    // where the inflated grain penetrates each neighbour by at most
+    // delta + h sqrt(3)/2; with up to kNear such neighbours V stays below this.
+    constexpr double kNear = 4;
+    const double threshold_near = kNear * gc::lens_volume(r0 + s_ref, r0, s_ref + delta + 0.5 * std::sqrt(3.0) * h);
     orient.clear();
     for (int k = 0; k < n_orient; ++k) orient.push_back(spin ? uniform_rotation(j.rng) : j.orientation());
-    cand.clear();
-    if (sb.radii.empty()) {
-      // Nothing near: every node is a candidate.
-      for (std::uint32_t k = 0; k < orient.size(); ++k)
-        for (std::size_t n = 0; n < grid.num_nodes(); ++n) cand.emplace_back(static_cast<std::uint32_t>(n), k);
-    } else {
-      const gc::SceneOverlap ov(gc::BallSet{sb.centres, sb.radii}, grid, reach, fo);
-      for (std::uint32_t k = 0; k < orient.size(); ++k) {
+    const std::size_t before = j.out.size();
+    std::int64_t visited = 0;
+    std::uniform_real_distribution<double> jitter(-0.5 * h, 0.5 * h);
+    constexpr int kTrialsPerCell = 4;
+    std::unique_ptr<gc::SceneOverlap> ov;
+    // One orientation at a time: its field, then its candidates, so that a
+    // time budget sees grains placed from the first field on.
+    for (std::size_t k = 0; k < orient.size() && !j.done() && !j.out_of_time(); ++k) {
+      const auto tf = Clock::now();
+      cand.clear();
+      near.clear();
+      if (sb.radii.empty()) {
+        // Nothing near: every node is a candidate.
+        for (std::size_t n = 0; n < grid.num_nodes(); ++n) cand.push_back(static_cast<std::uint32_t>(n));
+      } else {
+        if (!ov) ov = std::make_unique<gc::SceneOverlap>(gc::BallSet{sb.centres, sb.radii}, grid, reach, fo);
         const Eigen::Matrix3d R = orient[k].toRotationMatrix();
         std::array<double, 9> rm;
         for (int a = 0; a < 3; ++a)
           for (int b = 0; b < 3; ++b) rm[3 * a + b] = R(a, b);
-        field = ov.field(gc::BallSet{shape_c, shape_r}, rm);
+        field = ov->field(gc::BallSet{shape_c, shape_r}, rm);
         ++j.st.fields;
         for (std::size_t n = 0; n < field.size(); ++n)
-          if (field[n] <= threshold) cand.emplace_back(static_cast<std::uint32_t>(n), k);
+          if (field[n] <= threshold)
+            cand.push_back(static_cast<std::uint32_t>(n));
+          else if (field[n] <= threshold_near)
+            near.push_back(static_cast<std::uint32_t>(n));
       }
-    }
-    j.st.field_seconds += since(tf);
-    j.st.candidates += static_cast<std::int64_t>(cand.size());
-    std::shuffle(cand.begin(), cand.end(), j.rng);
-    const std::size_t before = j.out.size();
-    std::int64_t visited = 0;
-    for (const auto& [n, k] : cand) {
-      if (j.done()) break;
-      if ((++visited & 63) == 0 && j.out_of_time()) break;
-      const auto t = grid.node(n);
-      j.try_place(Vec3(t[0], t[1], t[2]), orient[k]);
+      j.st.field_seconds += since(tf);
+      j.st.candidates += static_cast<std::int64_t>(cand.size() + near.size());
+      std::shuffle(cand.begin(), cand.end(), j.rng);
+      std::shuffle(near.begin(), near.end(), j.rng);
+      // The nodes first, then random points in the cells of the near-free
+      // nodes (a few each): pockets smaller than the grid spacing or the margin.
+      for (const auto n : cand) {
+        if (j.done()) break;
+        if ((++visited & 63) == 0 && j.out_of_time()) break;
+        const auto t = grid.node(n);
+        j.try_place(Vec3(t[0], t[1], t[2]), orient[k]);
+      }
+      for (const auto n : near) {
+        if (j.done()) break;
+        if ((++visited & 63) == 0 && j.out_of_time()) break;
+        const auto t = grid.node(n);
+        for (int q = 0; q < kTrialsPerCell; ++q)
+          if (j.try_place(Vec3(t[0] + jitter(j.rng), t[1] + jitter(j.rng), t[2] + jitter(j.rng)), orient[k])) break;
+      }
     }
     if (j.out.size() == before) break;  // a whole round placed nothing: the region is full at this resolution
     // One size and one orientation: every candidate of a new field was a

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "contact/correlation/ball_kernels.hpp"
+#include "contact/correlation/ball_spectrum.hpp"
 #include "contact/correlation/overlap_field.hpp"
 #include "contact/correlation/truncated_overlap.hpp"
 #include "scenes.hpp"
@@ -130,6 +131,25 @@ TEST(OverlapField, FreeNodesAreFree) {
   }
   // Nodes with clearance beyond the margin are all found.
   EXPECT_GE(nodes.size(), truly_free);
+}
+
+TEST(BallSpectrum, DirectSumAgreesWithTheNufft) {
+  const gt::Scene shape{{0.0, 0.0, 0.0, 0.1, -0.02, 0.0, 0.03, 0.09, 0.04}, {0.07, 0.06, 0.05}};
+  const std::vector<double> w{1.0, 0.5, -0.25};
+  const gc::BallSet b{shape.centres, shape.radii, w};
+  const gc::PeriodicBox box{{0.0, 0.0, 0.0}, {1.0, 0.8, 1.2}};
+  const std::array<int, 3> K{12, 9, 14};
+  gc::SpectrumOptions so;
+  so.tolerance = 1e-10;
+  const auto a = gc::ball_spectrum(b, box, K, so);
+  const auto d = gc::ball_spectrum_direct(b, box, K);
+  double worst = 0.0, big = 0.0;
+  for (std::size_t q = 0; q < a.data().size(); ++q) {
+    worst = std::max(worst, std::abs(a.data()[q] - d.data()[q]));
+    big = std::max(big, std::abs(d.data()[q]));
+  }
+  EXPECT_GT(big, 1e-3);
+  EXPECT_LT(worst / big, 1e-8);
 }
 
 TEST(SceneOverlap, BallsAroundTheGridAndSeveralOrientations) {
