@@ -161,13 +161,23 @@ void run_fft(Job& j, const SceneGrains& scene, int threads) {
   const double h = c.spacing > 0 ? c.spacing : 0.25 * s_ref;
   gc::GridSpec grid;
   grid.periodic = {false, false, false};
+  Vec3 span;
   for (int d = 0; d < 3; ++d) {
-    const double span = c.region.hi[d] - c.region.lo[d] - 2 * qmax;
-    if (span < 0) return;  // nothing fits (refused at set-up for the nominal size)
-    grid.origin[d] = c.region.lo[d] + qmax;
+    span[d] = c.region.hi[d] - c.region.lo[d] - 2 * qmax;
+    if (span[d] < 0) return;  // nothing fits (refused at set-up for the nominal size)
     grid.spacing[d] = h;
-    grid.dims[d] = static_cast<int>(std::floor(span / h + 1e-9)) + 1;
   }
+  // The nodes of round `round`: the first on the region's corner, later ones
+  // shifted by a random fraction of a cell, so that each field looks between
+  // the nodes of the earlier ones (pockets smaller than the spacing).
+  auto place_grid = [&](int round) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int d = 0; d < 3; ++d) {
+      const double shift = round == 1 ? 0.0 : std::min(u(j.rng) * h, span[d]);
+      grid.origin[d] = c.region.lo[d] + qmax + shift;
+      grid.dims[d] = static_cast<int>(std::floor((span[d] - shift) / h + 1e-9)) + 1;
+    }
+  };
   gc::OverlapFieldOptions fo;
   fo.mode_factor = c.mode_factor;
   fo.tolerance = 1e-4;
@@ -202,8 +212,10 @@ void run_fft(Job& j, const SceneGrains& scene, int threads) {
   const int n_orient = spin ? c.orientations : 1;
   std::size_t joined = 0;  // grains of j.out already in bx/br
   constexpr int kMaxRounds = 100;
+  int idle = 0;  // consecutive rounds that placed nothing
   while (!j.done() && !j.out_of_time() && j.st.rounds < kMaxRounds) {
     ++j.st.rounds;
+    place_grid(j.st.rounds);
     for (; joined < j.out.size(); ++joined) {
       const auto& g = j.out[joined];
       if (c.grains.shape.kind == ShapeConfig::Kind::Ellipsoid)
@@ -278,12 +290,10 @@ void run_fft(Job& j, const SceneGrains& scene, int threads) {
           if (j.try_place(Vec3(t[0] + jitter(j.rng), t[1] + jitter(j.rng), t[2] + jitter(j.rng)), orient[k])) break;
       }
     }
-    if (j.out.size() == before) break;  // a whole round placed nothing: the region is full at this resolution
-    // One size and one orientation: every candidate of a new field was a
-    // candidate of this one (V only grows as grains are added) and was
-    // visited, so it is occupied or failed the exact check against fewer
-    // grains than now. Another field could place nothing.
-    if (!spin && j.sizes.front() == j.sizes.back()) break;
+    // Two rounds in a row placed nothing (two grids, new orientations): the
+    // region is full at this resolution.
+    idle = j.out.size() == before ? idle + 1 : 0;
+    if (idle == 2) break;
   }
 }
 

@@ -19,10 +19,14 @@
 //    smaller ball of a clump touches may pass and is then rejected by the
 //    exact check); nodes with V <= half of that are the candidates.
 //    They are visited in a random order (seeded), each confirmed by the exact
-//    check against the scene, the walls and the grains placed so far; when
-//    they run out before the count is reached, the field is recomputed with
-//    the new grains in the scene (and new trial orientations), until a round
-//    places nothing or the budget is spent.
+//    check against the scene, the walls and the grains placed so far; then
+//    random points in the cells of near-free nodes (V below 4 lens volumes
+//    at the penetration delta + h sqrt(3)/2: pockets between nodes), a few
+//    each. When the candidates run out before the count is reached, the
+//    field is recomputed with the new grains in the scene, new trial
+//    orientations and the nodes shifted by a random fraction of a cell,
+//    until two rounds in a row place nothing or the budget is spent. Each
+//    orientation's candidates are visited as soon as its field is ready.
 //
 // The scene enters as balls: spheres and clump balls as they are, ellipsoids
 // by their conservative ball covers (grain_geometry.hpp), radii rounded up to
