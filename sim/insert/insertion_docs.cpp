@@ -17,8 +17,9 @@ std::vector<EffectDoc> insertion_docs() {
        "computes the overlap volume of the grain (inflated by a margin) with the whole scene at every node of a "
        "grid over the region, for several trial orientations, by a correlation in Fourier space (the "
        "configuration-space obstacle, docs/nfft.md), and visits the nodes where it vanishes in random order; "
-       "method: random tries uniform random positions. fft finds the few free places of a dense packing that "
-       "random trials rarely hit. Insertions happen at the end of a step (they show in its frame and "
+       "method: random tries uniform random positions. fft pays off where free space is scarce (grains that "
+       "barely fit the pores, non-spherical grains) and the budget exceeds one field's cost; random trials are "
+       "cheap and win elsewhere (measured: bench/RESULTS.md). Insertions happen at the end of a step (they show in its frame and "
        "checkpoint); a restarted run inserts what the uninterrupted run does. Not with time.integrator: arkode.",
        {key("name", K::String, "label").def("insert<k>"),
         key("material", K::String, "material name").req(),
