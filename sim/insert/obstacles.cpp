@@ -104,6 +104,7 @@ bool Obstacles::clear_of_walls(const GrainParts& g) const {
       cw.radius = w.surface.radius;
       cw.z_min = w.surface.t_min;
       cw.z_max = w.surface.t_max;
+      cw.inside = w.surface.inside;
       bool touching = false;
       contact::ellipsoid_cylinder_contact(e, cw, &touching);
       if (touching) return false;

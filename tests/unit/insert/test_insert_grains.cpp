@@ -188,6 +188,8 @@ TEST(InsertGrains, EllipsoidsAmongSpheresAndEllipsoidsAgainstWalls) {
   walls.planes.back().point = Vec3(0, 0, 0.1);
   walls.cylinders.push_back({});
   walls.cylinders.back().surface = {Vec3(0.5, 0.5, 0), Vec3(0, 0, 1), 0.48, 0.0, 1.0, true};
+  walls.cylinders.push_back({});  // a post in the middle: grains stay outside it
+  walls.cylinders.back().surface = {Vec3(0.5, 0.5, 0), Vec3(0, 0, 1), 0.1, 0.0, 1.0, false};
   for (Method m : {Method::Fft, Method::Random}) {
     auto c = config(m, 0.06, 40, Vec3::Zero(), Vec3::Constant(L));
     c.grains.shape.kind = ShapeConfig::Kind::Ellipsoid;
@@ -202,6 +204,18 @@ TEST(InsertGrains, EllipsoidsAmongSpheresAndEllipsoidsAgainstWalls) {
       const double rho = rad.norm();
       if (rho > 0) rad /= rho;
       EXPECT_LE(rho + contact::support(form, rad), 0.48 + 1e-9);
+      // Clear of the post: no point of the surface (sampled) within 0.1 of the axis.
+      const Eigen::Matrix3d R = g.o.toRotationMatrix();
+      const Vec3 axes = g.r * c.grains.shape.axes_rel;
+      double closest = 1e300;
+      for (int u = 0; u < 40; ++u)
+        for (int v = 0; v <= 20; ++v) {
+          const double th = M_PI * v / 20, ph = 2 * M_PI * u / 40;
+          const Vec3 n(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
+          const Vec3 x = g.x + R * axes.cwiseProduct(n);
+          closest = std::min(closest, std::hypot(x.x() - 0.5, x.y() - 0.5));
+        }
+      EXPECT_GE(closest, 0.1 - 1e-9);
     }
   }
 }
