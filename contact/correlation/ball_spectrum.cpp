@@ -110,6 +110,45 @@ HalfSpectrum ball_spectrum(const BallSet& balls, const PeriodicBox& box,
   return out;
 }
 
+HalfSpectrum ball_spectrum_direct(const BallSet& balls, const PeriodicBox& box, std::array<int, 3> K,
+                                  int threads) {
+  balls.validate("ball_spectrum_direct");
+  for (int d = 0; d < 3; ++d)
+    if (!(box.period[d] > 0.0)) throw std::invalid_argument("ball_spectrum_direct: period must be > 0");
+  HalfSpectrum out(K);
+  threads = threads > 0 ? threads : omp_get_max_threads();
+  const std::size_t n = balls.size();
+  // Per ball and axis: w e^{-i k_d (x_d - o_d)} for m_d in [-K_d, K_d] (the weight on axis 0).
+  std::array<std::vector<std::complex<double>>, 3> ph;
+  for (int d = 0; d < 3; ++d) {
+    const std::size_t w = 2 * static_cast<std::size_t>(K[d]) + 1;
+    ph[d].resize(n * w);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double a = 2.0 * std::numbers::pi * (balls.centres[3 * i + d] - box.origin[d]) / box.period[d];
+      for (int m = -K[d]; m <= K[d]; ++m)
+        ph[d][i * w + static_cast<std::size_t>(m + K[d])] = (d == 0 ? balls.weight(i) : 1.0) * std::polar(1.0, -a * m);
+    }
+  }
+  std::array<double, 3> kw;
+  for (int d = 0; d < 3; ++d) kw[d] = 2.0 * std::numbers::pi / box.period[d];
+  const std::size_t w0 = 2 * static_cast<std::size_t>(K[0]) + 1, w1 = 2 * static_cast<std::size_t>(K[1]) + 1,
+                    w2 = 2 * static_cast<std::size_t>(K[2]) + 1;
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int m2 = -K[2]; m2 <= K[2]; ++m2)
+    for (int m1 = -K[1]; m1 <= K[1]; ++m1) {
+      std::complex<double>* o = &out(0, m1, m2);
+      const double k12 = kw[1] * kw[1] * m1 * m1 + kw[2] * kw[2] * m2 * m2;
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::complex<double> p12 =
+            ph[1][i * w1 + static_cast<std::size_t>(m1 + K[1])] * ph[2][i * w2 + static_cast<std::size_t>(m2 + K[2])];
+        const std::complex<double>* p0 = &ph[0][i * w0 + static_cast<std::size_t>(K[0])];
+        for (int m0 = 0; m0 <= K[0]; ++m0)
+          o[m0] += p0[m0] * p12 * ball_indicator_transform(std::sqrt(k12 + kw[0] * kw[0] * m0 * m0), balls.radii[i]);
+      }
+    }
+  return out;
+}
+
 std::vector<double> synthesize_on_grid(const HalfSpectrum& h, std::array<int, 3> T, int threads) {
   for (int d = 0; d < 3; ++d)
     if (T[d] < 1) throw std::invalid_argument("synthesize_on_grid: need >= 1 node per axis");

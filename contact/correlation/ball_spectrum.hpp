@@ -62,6 +62,12 @@ HalfSpectrum ball_spectrum(const BallSet& balls, const PeriodicBox& box,
                            std::array<int, 3> max_mode, const SpectrumOptions& opt = {},
                            int* classes = nullptr);
 
+// The same coefficients by direct summation over the balls, O(balls x
+// modes): exact (no NUFFT tolerance) and faster than the spreading and the
+// fine-grid FFT for a handful of balls (a grain's shape).
+HalfSpectrum ball_spectrum_direct(const BallSet& balls, const PeriodicBox& box, std::array<int, 3> max_mode,
+                                  int threads = 0);
+
 // Real field f(i) = sum_m H(m) exp(2 pi i sum_d m_d i_d / T_d) at the nodes
 // i_d = 0 .. T_d - 1 of a periodic grid, for a Hermitian H given on its half
 // spectrum. Modes beyond the grid's Nyquist fold onto their aliases, which

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "contact/correlation/ball_set.hpp"
+#include "contact/correlation/ball_spectrum.hpp"
 
 namespace grains::correlation {
 
@@ -51,6 +52,30 @@ std::vector<double> translational_overlap_field(const BallSet& scene, const Ball
 
 // Indices of the nodes where field <= threshold (x-fastest node indices).
 std::vector<std::size_t> free_nodes(const std::vector<double>& field, double threshold);
+
+// The scene's spectrum computed once and correlated with many shapes or
+// orientations (an insertion tries several orientations of a grain against
+// the same scene). Unlike translational_overlap_field, the scene's balls may
+// lie anywhere within `reach` + their radius of the grid's nodes (outside the
+// grid's box too, e.g. the grains around an insertion region): every
+// non-periodic axis is padded by twice that distance, so no translation of
+// the grid sees a periodic image. `reach` bounds |R y_j| + s_j of every shape
+// passed to field(), which refuses larger shapes.
+class SceneOverlap {
+ public:
+  SceneOverlap(const BallSet& scene, const GridSpec& grid, double reach, const OverlapFieldOptions& opt = {});
+  // V at the grid's nodes for `shape` rotated by `rotation` (x fastest).
+  std::vector<double> field(const BallSet& shape, const std::array<double, 9>& rotation) const;
+  const OverlapFieldInfo& info() const { return info_; }
+
+ private:
+  GridSpec grid_;
+  OverlapFieldOptions opt_;
+  double reach_;
+  PeriodicBox box_;
+  OverlapFieldInfo info_;
+  HalfSpectrum scene_;
+};
 
 // The identity rotation, for convenience.
 inline constexpr std::array<double, 9> kIdentityRotation = {1, 0, 0, 0, 1, 0, 0, 0, 1};

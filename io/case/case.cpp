@@ -87,6 +87,7 @@ class CaseParser {
     parse_neighbor(root["neighbor"]);
     parse_parallel(root["parallel"]);
     parse_growth(root["radius_growth"]);
+    parse_insert(root["insert"]);
     parse_output(root["output"]);
     parse_checkpoint(root["checkpoint"]);
   }
@@ -486,6 +487,53 @@ class CaseParser {
       if (p.placement.kind == sim::Placement::Kind::RandomFill && s["placement"] && !s["count"])
         v_.error(s, ctx, "random_fill needs 'count' (the number of particles to place)");
       c_.scene.sets.push_back(std::move(p));
+    }
+  }
+
+  // insert[]: grains described as a particle set, plus when, where and how.
+  void parse_insert(const YAML::Node& n) {
+    if (!n) return;
+    if (!n.IsSequence() || n.size() == 0) {
+      v_.error(n, "insert", "expected a non-empty list of insertions");
+      return;
+    }
+    const auto& d = doc("insert");
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      const auto ctx = idx("insert", i);
+      const YAML::Node e = n[i];
+      if (!v_.check_map(e, d, ctx)) continue;
+      sim::InsertionConfig c;
+      c.where = v_.where(e);
+      auto& g = c.grains;
+      g.where = c.where;
+      g.name = v_.string(e, d, "name", ctx, "insert" + std::to_string(i));
+      g.material = material(e, d, ctx);
+      parse_radius(e, g, ctx);
+      g.count = v_.integer(e, d, "count", ctx, 1);
+      g.velocity = v_.vec3(e, d, "velocity", ctx);
+      if (e["shape"]) parse_shape(e["shape"], g, ctx + ".shape");
+      if (e["region"]) c.region = region(e["region"], ctx + ".region");
+      const std::string method = v_.string(e, d, "method", ctx, "fft");
+      c.method = method == "random" ? sim::InsertionConfig::Method::Random : sim::InsertionConfig::Method::Fft;
+      c.at = v_.number(e, d, "at", ctx, 0);
+      c.every = v_.number(e, d, "every", ctx, 0);
+      c.until = v_.number(e, d, "until", ctx, 0);
+      if (e["until"] && c.until < c.at) v_.error(e["until"], ctx, "until must not be before at");
+      c.orientations = static_cast<int>(v_.integer(e, d, "orientations", ctx, 8));
+      c.spacing = v_.number(e, d, "spacing", ctx, 0);
+      c.margin = v_.number(e, d, "margin", ctx, 0.25);
+      c.mode_factor = v_.number(e, d, "mode_factor", ctx, 1);
+      c.attempts = v_.integer(e, d, "attempts", ctx, 100000);
+      c.budget = v_.number(e, d, "budget", ctx, 0);
+      c.seed = static_cast<std::uint64_t>(v_.integer(e, d, "seed", ctx, 1));
+      // (Not when the method itself is misspelt: that error says enough.)
+      const YAML::Node m = e["method"];
+      const bool known = !m || (m.IsScalar() && (m.Scalar() == "fft" || m.Scalar() == "random"));
+      const bool fft = c.method == sim::InsertionConfig::Method::Fft;
+      for (const char* k : {"orientations", "spacing", "margin", "mode_factor"})
+        if (known && e[k] && !fft) v_.error(e[k], ctx, std::string("'") + k + "' applies to method: fft only");
+      if (known && e["attempts"] && fft) v_.error(e["attempts"], ctx, "'attempts' applies to method: random only");
+      c_.scene.insertions.push_back(std::move(c));
     }
   }
 

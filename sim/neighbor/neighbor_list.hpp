@@ -38,6 +38,14 @@ class NeighborList {
   /// Makes the next needs_rebuild() true: for an integrator that knows its
   /// coming steps may move particles further than the skin allows.
   void invalidate() { x_build_.clear(); }
+  /// Owned particles were appended after the last build (inserted grains,
+  /// no ghosts present): gives them empty rows, so that the list keeps
+  /// matching the particles (a checkpoint of this step restores), and
+  /// invalidates it, so that the next step builds their pairs.
+  void append_empty_rows(std::size_t count) {
+    if (!row_start.empty()) row_start.resize(row_start.size() + count, row_start.back());
+    invalidate();
+  }
 
   /// Radii grew by up to dr since the last build (integrate/radius_growth):
   /// the growth closes gaps like displacement does and counts in the trigger.

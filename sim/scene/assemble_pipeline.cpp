@@ -12,6 +12,7 @@
 #include "sim/integrate/verlet.hpp"
 #include "sim/laws/ellipsoid_pair_stage.hpp"
 #include "sim/laws/pair_contact_stage.hpp"
+#include "sim/insert/insertion_stage.hpp"
 #include "sim/neighbor/neighbor_stage.hpp"
 #include "sim/scene/body_forces.hpp"
 #include "sim/scene/build_scene.hpp"
@@ -156,6 +157,8 @@ Pipeline assemble_pipeline(const Scene& s, const SceneConfig& c) {
   else
     dispatch_rolling<NoTangential>(p, n);
   if (n.clumps) p.add(std::make_unique<ClumpForces>());  // last of the force phase
+  // First of the output phase (outputs are added after it), only when asked for.
+  if (!c.insertions.empty()) p.add(std::make_unique<InsertionStage>(c.insertions, s.clock.dt, n.ellipsoids));
   return p;
 }
 

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "contact/ellipsoid/ellipsoid.hpp"
+#include "sim/insert/insertion_stage.hpp"
 #include "sim/scene/placement.hpp"
 #include "sim/integrate/clump_bodies.hpp"
 
@@ -25,45 +26,71 @@ Quat random_orientation(std::mt19937_64& rng) {
 }
 bool choose(SlotChoice c, bool automatic) { return c == SlotChoice::Auto ? automatic : c == SlotChoice::On; }
 
-// One clump of bounding radius q.r at q.x: a body and its balls. The balls'
-// mass field holds the body's mass (m* of their contacts).
-void add_clump(Scene& s, const ParticleSetConfig& set, const PlacedParticle& q, std::int64_t& gid,
-               std::mt19937_64& rng, const SceneNeeds& need) {
-  const ClumpShape& c = *set.shape.clump;
-  const double rho = s.materials[set.material].density, sc = q.r;
-  const Quat o = set.shape.random_orientation ? random_orientation(rng) : set.shape.orientation;
-  const Eigen::Matrix3d R = o.toRotationMatrix();
-  const double m = rho * c.volume * sc * sc * sc;
-  const auto body_id = static_cast<std::int64_t>(s.bodies.size());
-  s.bodies.add(body_id, q.x, set.velocity, o, m, rho * std::pow(sc, 5) * c.inertia, c.volume * sc * sc * sc,
-               static_cast<int>(c.radii.size()));
+}  // namespace
+
+void add_grain(Scene& s, const ParticleSetConfig& set, const Vec3& x, double r, const Quat& o, std::int64_t& gid,
+               std::int64_t body_id, bool ellipsoid_fields, const std::string& what) {
   auto& p = s.particles;
-  for (std::size_t k = 0; k < c.radii.size(); ++k) {
-    const Vec3 off = sc * c.centres[k];
-    const Vec3 x = q.x + R * off;
-    if (!s.domain.contains(x)) {
-      std::ostringstream e;
-      e << set.where << ": clump " << q.index_in_set << " of set '" << set.name << "' has a ball at (" << x.transpose()
-        << ") outside the domain; move it or enlarge domain";
-      throw SetupError(e.str());
+  const double rho = s.materials[set.material].density;
+  if (set.shape.kind == ShapeConfig::Kind::Clump) {
+    // A clump of bounding radius r: a body and its balls. The balls' mass
+    // field holds the body's mass (m* of their contacts).
+    const ClumpShape& c = *set.shape.clump;
+    const Eigen::Matrix3d R = o.toRotationMatrix();
+    const double m = rho * c.volume * r * r * r;
+    for (std::size_t k = 0; k < c.radii.size(); ++k) {
+      const Vec3 xb = x + R * (r * c.centres[k]);
+      if (!s.domain.contains(xb)) {
+        std::ostringstream e;
+        e << set.where << ": " << what << " of set '" << set.name << "' has a ball at (" << xb.transpose()
+          << ") outside the domain; move it or enlarge domain";
+        throw SetupError(e.str());
+      }
     }
-    const auto i = p.add(gid++, x, set.velocity, sc * c.radii[k], m, set.material, kSphere);
-    p.body[i] = body_id;
-    p.body_offset[i] = off;
-    if (need.ellipsoids) p.orientation[i] = o;
+    s.bodies.add(body_id, x, set.velocity, o, m, rho * std::pow(r, 5) * c.inertia, c.volume * r * r * r,
+                 static_cast<int>(c.radii.size()));
+    for (std::size_t k = 0; k < c.radii.size(); ++k) {
+      const Vec3 off = r * c.centres[k];
+      const auto i = p.add(gid++, x + R * off, set.velocity, r * c.radii[k], m, set.material, kSphere);
+      p.body[i] = body_id;
+      p.body_offset[i] = off;
+      if (ellipsoid_fields) p.orientation[i] = o;
+    }
+    return;
+  }
+  const bool ell = set.shape.kind == ShapeConfig::Kind::Ellipsoid;
+  const Vec3 axes = r * set.shape.axes_rel;
+  const double m = rho * 4.0 / 3.0 * M_PI * axes.prod();
+  if (!s.domain.contains(x)) {
+    std::ostringstream e;
+    e << set.where << ": " << what << " of set '" << set.name << "' at (" << x.transpose()
+      << ") lies outside the domain; move it or enlarge domain";
+    throw SetupError(e.str());
+  }
+  const auto i = p.add(gid++, x, set.velocity, r, m, set.material, ell ? kEllipsoid : kSphere);
+  if (ellipsoid_fields) {
+    p.semi_axes[i] = axes;
+    const Vec3 a2 = axes.cwiseProduct(axes);
+    p.inertia[i] = m / 5.0 * Vec3(a2.y() + a2.z(), a2.x() + a2.z(), a2.x() + a2.y());
+    if (ell) {
+      p.orientation[i] = o;
+      p.form[i] = contact::quadratic_form(axes, o);
+    }
   }
 }
-}  // namespace
 
 SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs) {
   SceneNeeds n;
   n.tangential = choose(c.tangential, pairs.any_friction());
   n.rolling = choose(c.rolling, pairs.any_rolling());
   n.cohesion = choose(c.cohesion, pairs.any_cohesion());
-  for (const auto& s : c.sets) {
+  // Grains inserted during the run count as if they were there from the start.
+  auto shapes = [&](const ParticleSetConfig& s) {
     n.ellipsoids = n.ellipsoids || s.shape.kind == ShapeConfig::Kind::Ellipsoid;
     n.clumps = n.clumps || s.shape.kind == ShapeConfig::Kind::Clump;
-  }
+  };
+  for (const auto& s : c.sets) shapes(s);
+  for (const auto& ins : c.insertions) shapes(ins.grains);
   n.rotation = n.tangential || n.rolling || n.ellipsoids;
   n.gravity = c.gravity.squaredNorm() > 0;
   n.planes = !c.walls.planes.empty();
@@ -84,7 +111,11 @@ SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs) {
 
 double rayleigh_time(const SceneConfig& c) {
   double t = std::numeric_limits<double>::infinity();
-  for (const auto& s : c.sets) {
+  std::vector<const ParticleSetConfig*> sets;
+  for (const auto& s : c.sets) sets.push_back(&s);
+  for (const auto& ins : c.insertions) sets.push_back(&ins.grains);  // grains inserted later
+  for (const auto* sp : sets) {
+    const auto& s = *sp;
     const Material& m = c.materials[s.material];
     double r = s.placement.radii.empty() ? s.size.smallest()
                                          : *std::min_element(s.placement.radii.begin(), s.placement.radii.end());
@@ -151,30 +182,15 @@ Scene build_scene(SceneConfig& c) {
   for (const auto& set : c.sets) orient_rng.emplace_back(set.placement.seed ^ 0x9E3779B97F4A7C15ull);
   for (const auto& q : placed) {
     const auto& set = c.sets[q.set];
-    if (set.shape.kind == ShapeConfig::Kind::Clump) {
-      add_clump(s, set, q, gid, orient_rng[q.set], need);
-      continue;
-    }
+    // Orientations drawn as the set asks: clumps always, ellipsoids when the
+    // scene has orientation fields (it does whenever there are ellipsoids).
+    Quat o = set.shape.orientation;
+    const bool clump = set.shape.kind == ShapeConfig::Kind::Clump;
     const bool ell = set.shape.kind == ShapeConfig::Kind::Ellipsoid;
-    const Vec3 axes = q.r * set.shape.axes_rel;
-    const double m = c.materials[set.material].density * 4.0 / 3.0 * M_PI * axes.prod();
-    if (!s.domain.contains(q.x)) {
-      std::ostringstream e;
-      e << set.where << ": particle " << q.index_in_set << " of set '" << set.name << "' at (" << q.x.transpose()
-        << ") lies outside the domain; move it or enlarge domain";
-      throw SetupError(e.str());
-    }
-    const auto i = s.particles.add(gid++, q.x, set.velocity, q.r, m, set.material, ell ? kEllipsoid : kSphere);
-    if (need.ellipsoids) {
-      auto& p = s.particles;
-      p.semi_axes[i] = axes;
-      const Vec3 a2 = axes.cwiseProduct(axes);
-      p.inertia[i] = m / 5.0 * Vec3(a2.y() + a2.z(), a2.x() + a2.z(), a2.x() + a2.y());
-      if (ell) {
-        p.orientation[i] = set.shape.random_orientation ? random_orientation(orient_rng[q.set]) : set.shape.orientation;
-        p.form[i] = contact::quadratic_form(axes, p.orientation[i]);
-      }
-    }
+    if ((clump || (ell && need.ellipsoids)) && set.shape.random_orientation) o = random_orientation(orient_rng[q.set]);
+    const auto body_id = static_cast<std::int64_t>(s.bodies.size());
+    add_grain(s, set, q.x, q.r, o, gid, body_id, need.ellipsoids,
+              (clump ? "clump " : "particle ") + std::to_string(q.index_in_set));
   }
   if (c.growth.enabled) {
     c.growth.initial_radius = std::numeric_limits<double>::infinity();
@@ -196,6 +212,16 @@ Scene build_scene(SceneConfig& c) {
   if (need.clumps) place_clump_balls(s.particles, s.bodies, true);
   double rmax = 0;
   for (const auto r : s.particles.radius) rmax = std::max(rmax, r);
+  // Grains inserted later: their largest sphere or ellipsoid radius, or clump ball.
+  for (const auto& ins : c.insertions) {
+    const auto& g = ins.grains;
+    const double q = g.size.largest() * g.shape.bounding_factor;
+    if (g.shape.kind == ShapeConfig::Kind::Clump)
+      for (double rb : g.shape.clump->radii) rmax = std::max(rmax, q * rb);
+    else
+      rmax = std::max(rmax, q);
+  }
+  check_insertions(c);
   // Ellipsoid scenes keep the PW85 lambda of each pair after the law's history.
   s.neighbors.configure(need.history_size + (need.ellipsoids ? 1 : 0), c.skin * 2 * rmax);
   setup_parallel(s, c, rmax);
@@ -217,6 +243,11 @@ void setup_parallel(Scene& s, const SceneConfig& c, double rmax) {
   if (s.particles.fields().has(Field::Body))
     for (std::size_t i = 0; i < s.particles.n_owned(); ++i)
       if (s.particles.body[i] >= 0) extent = std::max(extent, s.particles.body_offset[i].norm());
+  for (const auto& ins : c.insertions)  // clumps inserted later
+    if (ins.grains.shape.kind == ShapeConfig::Kind::Clump) {
+      const double q = ins.grains.size.largest() * ins.grains.shape.bounding_factor;
+      for (const auto& cb : ins.grains.shape.clump->centres) extent = std::max(extent, q * cb.norm());
+    }
   // Growing radii (radius_growth) reach at most max_scale times their start.
   const double grow = c.growth.enabled ? c.growth.max_scale : 1.0;
   const double cut = 2 * rmax * grow + s.neighbors.skin() + extent;

@@ -34,6 +34,15 @@ double rayleigh_time(const SceneConfig& c);
 /// Warnings (e.g. dt above 0.3 Rayleigh times) are appended to c.warnings.
 Scene build_scene(SceneConfig& c);
 
+/// Appends one grain of `set` at x: a sphere or an ellipsoid of bounding
+/// radius r, or a clump of bounding radius r (a body with id body_id and its
+/// balls), with orientation o and global ids from gid on (a clump takes one
+/// per ball). `ellipsoid_fields`: the scene keeps semi-axes, orientations
+/// and forms (it has ellipsoids). Throws SetupError naming `what` when the
+/// grain (a clump's ball) lies outside the domain.
+void add_grain(Scene& s, const ParticleSetConfig& set, const Vec3& x, double r, const Quat& o, std::int64_t& gid,
+               std::int64_t body_id, bool ellipsoid_fields, const std::string& what);
+
 /// Threads and ranks: the deterministic force sum when threads run, and under
 /// MPI (or with periodic dimensions) the exchange, after which this rank
 /// holds only the particles it owns. Called by build_scene.

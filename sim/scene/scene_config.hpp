@@ -83,6 +83,26 @@ struct ParticleSetConfig {
   std::string where;
 };
 
+/// Insertion of new grains during a run (case file: insert[]; sim/insert/).
+/// The grains are described as a particle set (shape, material, size,
+/// velocity); `grains.count` is the number asked for at each insertion.
+struct InsertionConfig {
+  enum class Method { Fft, Random } method = Method::Fft;
+  ParticleSetConfig grains;
+  Region region;              // holds the whole inserted grains
+  double at = 0;              // time of the first insertion (s); 0: after the first step
+  double every = 0;           // s between insertions; 0: once
+  double until = 0;           // no insertion after this time (s); 0: the end of the run
+  int orientations = 8;       // trial orientations per field (non-spherical grains with random orientation)
+  double spacing = 0;         // fft grid spacing (m); 0: a quarter of the grain's largest ball
+  double margin = 0.25;       // fft: shape balls inflated by margin x the largest ball's radius
+  double mode_factor = 1;     // fft: modes per axis / grid nodes per axis
+  std::int64_t attempts = 100000;  // random: consecutive failed trials before giving up
+  double budget = 0;          // wall-clock seconds per insertion; 0: none
+  std::uint64_t seed = 1;
+  std::string where;          // file:line:column of the entry
+};
+
 enum class SlotChoice { Auto, None, On };
 
 /// The time integrator (case file: time.integrator).
@@ -127,6 +147,7 @@ struct SceneConfig {
   double overlap_tolerance = 0.01;  // initial overlaps above this fraction of the smaller radius are refused
   RadiusGrowthConfig growth;        // isotropic compression by growing radii (radius_growth)
   std::string growth_where;
+  std::vector<InsertionConfig> insertions;  // insert[]: grains added during the run
   std::vector<std::string> warnings;  // filled by build_scene
 };
 

@@ -8,6 +8,7 @@ namespace grains::sim {
 
 std::vector<EffectDoc> law_docs();
 std::vector<EffectDoc> wall_docs();
+std::vector<EffectDoc> insertion_docs();
 
 namespace {
 
@@ -28,7 +29,8 @@ std::vector<EffectDoc> scene_docs() {
                 key("parallel", K::Map, "threads and MPI ranks (see parallel)"),
                 key("output", K::Map, "output (see output)"),
                 key("checkpoint", K::Map, "HDF5 checkpoints for restart (see checkpoint)"),
-                key("radius_growth", K::Map, "isotropic compression by growing radii (see radius_growth)")}});
+                key("radius_growth", K::Map, "isotropic compression by growing radii (see radius_growth)"),
+                key("insert", K::List, "grains inserted during the run where they overlap nothing (see insert)")}});
   d.push_back({"radius_growth", "radius_growth: {...}",
                "Isotropic compression by growing radii (a jamming protocol): each step every radius is multiplied "
                "by exp(g dt), g = rate * clamp(1 - o/target_overlap, -1, 1), where the overlap per particle o is the "
@@ -167,6 +169,7 @@ std::vector<EffectDoc>& mutable_docs() {
     std::vector<EffectDoc> a = scene_docs();
     for (auto& x : law_docs()) a.push_back(std::move(x));
     for (auto& x : wall_docs()) a.push_back(std::move(x));
+    for (auto& x : insertion_docs()) a.push_back(std::move(x));
     return a;
   }();
   return all;

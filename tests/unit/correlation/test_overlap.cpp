@@ -7,6 +7,7 @@
 #include <random>
 
 #include "contact/correlation/ball_kernels.hpp"
+#include "contact/correlation/ball_spectrum.hpp"
 #include "contact/correlation/overlap_field.hpp"
 #include "contact/correlation/truncated_overlap.hpp"
 #include "scenes.hpp"
@@ -130,6 +131,66 @@ TEST(OverlapField, FreeNodesAreFree) {
   }
   // Nodes with clearance beyond the margin are all found.
   EXPECT_GE(nodes.size(), truly_free);
+}
+
+TEST(BallSpectrum, DirectSumAgreesWithTheNufft) {
+  const gt::Scene shape{{0.0, 0.0, 0.0, 0.1, -0.02, 0.0, 0.03, 0.09, 0.04}, {0.07, 0.06, 0.05}};
+  const std::vector<double> w{1.0, 0.5, -0.25};
+  const gc::BallSet b{shape.centres, shape.radii, w};
+  const gc::PeriodicBox box{{0.0, 0.0, 0.0}, {1.0, 0.8, 1.2}};
+  const std::array<int, 3> K{12, 9, 14};
+  gc::SpectrumOptions so;
+  so.tolerance = 1e-10;
+  const auto a = gc::ball_spectrum(b, box, K, so);
+  const auto d = gc::ball_spectrum_direct(b, box, K);
+  double worst = 0.0, big = 0.0;
+  for (std::size_t q = 0; q < a.data().size(); ++q) {
+    worst = std::max(worst, std::abs(a.data()[q] - d.data()[q]));
+    big = std::max(big, std::abs(d.data()[q]));
+  }
+  EXPECT_GT(big, 1e-3);
+  EXPECT_LT(worst / big, 1e-8);
+}
+
+TEST(SceneOverlap, BallsAroundTheGridAndSeveralOrientations) {
+  // The scene's spectrum once, two orientations of a clump; the scene's balls
+  // lie beyond the grid's box on every side (as around an insertion region),
+  // so no node may see a periodic image of them.
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> u(-0.3, 1.3);
+  gt::Scene scene;
+  for (int i = 0; i < 60; ++i) {
+    scene.centres.insert(scene.centres.end(), {u(rng), u(rng), u(rng)});
+    scene.radii.push_back(i % 2 ? 0.08 : 0.12);
+  }
+  const gt::Scene shape{{0.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.09, 0.04}, {0.07, 0.06, 0.05}};
+  double reach = 0.0, vshape = 0.0;
+  for (std::size_t j = 0; j < shape.radii.size(); ++j) {
+    const double* y = &shape.centres[3 * j];
+    reach = std::max(reach, std::sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]) + shape.radii[j]);
+    vshape += 4.0 / 3.0 * kPi * std::pow(shape.radii[j], 3);
+  }
+  gc::GridSpec g;
+  g.dims = {21, 21, 21};
+  g.spacing = {0.05, 0.05, 0.05};
+  g.periodic = {false, false, false};
+  gc::OverlapFieldOptions opt;
+  opt.mode_factor = 2.0;
+  const gc::SceneOverlap ov(gc::BallSet{scene.centres, scene.radii}, g, reach, opt);
+  for (const auto& R : {gc::kIdentityRotation, rotation(1, 2, 3, 0.7)}) {
+    const auto f = ov.field(gc::BallSet{shape.centres, shape.radii}, R);
+    ASSERT_EQ(f.size(), g.num_nodes());
+    double worst = 0.0, vmax = 0.0;
+    for (std::size_t n = 0; n < f.size(); ++n) {
+      const double e = exact_overlap(scene, shape, R, g.node(n), {1, 1, 1}, {false, false, false});
+      worst = std::max(worst, std::abs(f[n] - e));
+      vmax = std::max(vmax, e);
+    }
+    EXPECT_GT(vmax, 0.5 * vshape);  // the field sees real overlaps
+    EXPECT_LT(worst / vshape, 1.5e-2);
+  }
+  const gt::Scene far{{0.3, 0.0, 0.0}, {0.1}};
+  EXPECT_THROW((void)ov.field(gc::BallSet{far.centres, far.radii}, gc::kIdentityRotation), std::invalid_argument);
 }
 
 TEST(TruncatedOverlap, ErrorDecreasesWithRetainedModes) {
