@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <sys/statvfs.h>
 
 namespace grains::io::h5 {
 
@@ -35,9 +36,21 @@ std::string innermost_hdf5_error() {
 }
 }  // namespace
 
-void File::fail(const std::string& what) const {
+void File::fail(const std::string& what, std::size_t bytes) const {
   const int e = errno;
   std::string why = e ? std::strerror(e) : innermost_hdf5_error();
+  if (!e && parallel_) {
+    // MPI-IO reports a failed write without the system error: when the
+    // file system has less room than the write needed, that is the cause.
+    const auto slash = path_.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "." : path_.substr(0, slash + 1);
+    struct statvfs st {};
+    if (::statvfs(dir.c_str(), &st) == 0) {
+      const auto room = static_cast<unsigned long long>(st.f_bavail) * st.f_frsize;
+      if (room < std::max<unsigned long long>(bytes, 65536))
+        why = std::string(std::strerror(ENOSPC)) + ": " + std::to_string(room) + " bytes free";
+    }
+  }
   throw H5Error("checkpoint '" + path_ + "': " + what + (why.empty() ? std::string() : " (" + why + ")"));
 }
 
@@ -207,7 +220,7 @@ void File::write_rows(const std::string& name, hid_t type, const void* data, std
           H5Sselect_none(mem.get());
         }
         if (H5Dwrite(ds.get(), type, mem.get(), space.get(), dxpl_.get(), data) < 0)
-          fail("writing dataset " + name + " failed");
+          fail("writing dataset " + name + " failed", total_rows * cols * H5Tget_size(type));
       }
     }
   } catch (const H5Error& e) {

@@ -165,7 +165,10 @@ class File {
   std::string read_attribute(const std::string& object, const std::string& key) const;
 
  private:
-  [[noreturn]] void fail(const std::string& what) const;
+  /// Throws H5Error for `what`, with the system error, or HDF5's, and for
+  /// parallel files a full disk when the folder has less than `bytes` (at
+  /// least 64 KiB) free.
+  [[noreturn]] void fail(const std::string& what, std::size_t bytes = 0) const;
   /// Parallel files: every rank passes its error (empty: none); when any
   /// rank has one, all throw H5Error with the lowest rank's. Serial: throws
   /// a non-empty error.
