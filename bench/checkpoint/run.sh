@@ -30,13 +30,13 @@ SETS=(--set particles.0.count=50000 --set "walls.2.point=[0.045, 0, 0]" --set "w
       --set time.end=$END --set output.every=1 --set checkpoint.every_steps=$EVERY --set checkpoint.keep=3 -q)
 N_CK=$((STEPS / EVERY))
 
-echo "== $(date -u '+%Y-%m-%d %H:%M UTC'), $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores, $(git -C "$ROOT" rev-parse --short HEAD)"
+echo "== $(date -u '+%Y-%m-%d %H:%M UTC'), $(lscpu | sed -n 's/^Model name: *//p'), $(nproc --all) cores, $(git -C "$ROOT" rev-parse --short HEAD)"
 echo "== load before: $(uptime)"
 per_ck() {  # OUT -> ms per checkpoint
   python3 - "$1/summary.json" "$N_CK" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1]))["stage_seconds"]
-t = sum(v for k, v in s.items() if k.startswith("output.checkpoint"))
+t = sum(v for k, v in s.items() if "output.checkpoint" in k)
 print(f"{1000 * t / int(sys.argv[2]):.1f}")
 PY
 }

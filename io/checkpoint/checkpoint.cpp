@@ -178,15 +178,16 @@ void write_checkpoint_parallel(const fs::path& file, sim::Scene& s, sim::IdBlock
   const fs::path tmp = temporary_name(file);
   std::string err;
   try {
-    // Every call below is made by every rank in the same order; each ends
-    // with an agreement, so a failure throws on all ranks at the same call
-    // and the file is closed (collectively) by all of them.
+    // Every call below is made by every rank in the same order; errors are
+    // agreed on at check() and close(), so a failure throws on all ranks at
+    // the same point and the file is closed (collectively) by all of them.
     auto f = h5::File::create_parallel(tmp.string());
     write_head(f, s.clock, x);
     auto& q = b.particles;
     write_particles(f, q, b.particle_offset, b.particle_total);
     if (s.particles.fields().has(sim::Field::Body))
       write_bodies(f, b.bodies, b.body_offset, b.body_total);
+    f.check();  // the bulk of the data: stop here on every rank if any failed
     // The contact histories as CSR rows in global-id order (as gather_scene
     // makes them): no build positions, so the continuing run rebuilds at
     // its first step and carries the histories over by global ids.

@@ -54,7 +54,18 @@ void File::fail(const std::string& what, std::size_t bytes) const {
   throw H5Error("checkpoint '" + path_ + "': " + what + (why.empty() ? std::string() : " (" + why + ")"));
 }
 
-void File::agree(const std::string& error) const {
+void File::defer(const std::string& error) const {
+  if (!parallel_) {
+    if (!error.empty()) throw H5Error(error);
+  } else if (pending_.empty()) {
+    pending_ = error;
+  }
+}
+
+void File::check() const { agree(""); }
+
+void File::agree(const std::string& this_error) const {
+  const std::string error = this_error.empty() ? pending_ : this_error;
   if (!parallel_) {
     if (!error.empty()) throw H5Error(error);
     return;
@@ -159,7 +170,7 @@ void File::group(const std::string& name) const {
   } catch (const H5Error& e) {
     err = e.what();
   }
-  agree(err);
+  defer(err);
 }
 
 bool File::exists(const std::string& name) const {
@@ -184,11 +195,17 @@ std::vector<std::string> File::children(const std::string& group) const {
 
 void File::write_raw(const std::string& name, hid_t type, const void* data, std::size_t rows, std::size_t cols,
                      const std::string& unit) const {
-  write_rows(name, type, data, writer_ ? rows : 0, cols, 0, rows, unit);
+  write_dataset(name, type, data, rows, cols, 0, rows, unit, true);
 }
 
 void File::write_rows(const std::string& name, hid_t type, const void* data, std::size_t local_rows,
                       std::size_t cols, std::size_t offset, std::size_t total_rows, const std::string& unit) const {
+  write_dataset(name, type, data, local_rows, cols, offset, total_rows, unit, false);
+}
+
+void File::write_dataset(const std::string& name, hid_t type, const void* data, std::size_t local_rows,
+                         std::size_t cols, std::size_t offset, std::size_t total_rows, const std::string& unit,
+                         bool once) const {
   std::string err;
   try {
     const int rank = cols == 1 ? 1 : 2;
@@ -205,8 +222,10 @@ void File::write_rows(const std::string& name, hid_t type, const void* data, std
     if (!ds.valid()) fail("cannot create dataset " + name);
     if (total_rows * cols > 0) {
       errno = 0;
-      if (!parallel_) {
-        if (H5Dwrite(ds.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) fail("writing dataset " + name + " failed");
+      if (!parallel_ || once) {
+        // Serial files; in parallel files the items written once, by rank 0 alone (independent transfer).
+        if (writer_ && H5Dwrite(ds.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+          fail("writing dataset " + name + " failed", total_rows * cols * H5Tget_size(type));
       } else {
         // Every rank takes part in the collective write, with no rows if it has none.
         const hsize_t start[2] = {offset, 0}, count[2] = {local_rows, cols};
@@ -226,6 +245,8 @@ void File::write_rows(const std::string& name, hid_t type, const void* data, std
   } catch (const H5Error& e) {
     err = e.what();
   }
+  // Agreed on at once: a rank whose write failed must not go on alone
+  // (HDF5 may take another path through the next collective call).
   agree(err);
   attribute(name, "units", unit.empty() ? "1" : unit);  // "1": dimensionless or a count
 }
@@ -272,14 +293,9 @@ void File::write_string(const std::string& name, const std::string& s) const {
     errno = 0;
     if (!parallel_) {
       if (H5Dwrite(ds.get(), t.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, s.c_str()) < 0) fail("writing " + name + " failed");
-    } else {  // rank 0 writes, the others take part with nothing selected
-      Handle mem(H5Screate(H5S_SCALAR), H5Sclose);
-      if (!writer_) {
-        H5Sselect_none(space.get());
-        H5Sselect_none(mem.get());
-      }
-      if (H5Dwrite(ds.get(), t.get(), mem.get(), space.get(), dxpl_.get(), s.c_str()) < 0)
-        fail("writing " + name + " failed");
+    } else if (writer_) {  // rank 0 writes (independent transfer), the others only create it
+      if (H5Dwrite(ds.get(), t.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, s.c_str()) < 0)
+        fail("writing " + name + " failed", s.size() + 1);
     }
   } catch (const H5Error& e) {
     err = e.what();
@@ -315,7 +331,7 @@ void File::attribute(const std::string& object, const std::string& key, const st
   } catch (const H5Error& e) {
     err = e.what();
   }
-  agree(err);
+  defer(err);
 }
 
 std::string File::read_attribute(const std::string& object, const std::string& key) const {

@@ -7,10 +7,15 @@
 // built with it): every rank of MPI_COMM_WORLD makes the same calls in the
 // same order; a dataset is created with its global shape and each rank
 // writes its own rows (write_rows) with collective transfers; items written
-// once (write_raw, write_scalar, write_string) take rank 0's data. Every
-// operation ends with an agreement over ranks, so a failure on any rank
-// (disk full on the rank that wrote) throws the same H5Error on all of them
-// at the same operation, and they leave the file together.
+// once (write_raw, write_scalar, write_string) are written by rank 0 alone
+// (independent transfer). Every data write, the flush and the close end
+// with an agreement over ranks (one small reduction), so a failure on any
+// rank (disk full on the rank that wrote) throws the same H5Error on all
+// of them at the same operation, and they leave the file together; groups
+// and attributes (metadata, written at the flush) are agreed on with the
+// next data write. (Letting a rank go on after a failed collective write
+// and agreeing later hung in the disk-full test: HDF5's next collective
+// call is not made the same way on every rank.)
 #include <array>
 #include <cstdint>
 #include <stdexcept>
@@ -111,6 +116,10 @@ class File {
   hid_t id() const { return h_.get(); }
   /// Flushes and closes; throws when HDF5 could not complete the file.
   void close();
+  /// Parallel files: every rank calls it; throws the same H5Error on all
+  /// ranks when an operation since the last check failed on any. Serial
+  /// files throw at the failing operation itself.
+  void check() const;
 
   void group(const std::string& name) const;
   bool exists(const std::string& name) const;
@@ -173,6 +182,11 @@ class File {
   /// rank has one, all throw H5Error with the lowest rank's. Serial: throws
   /// a non-empty error.
   void agree(const std::string& error) const;
+  /// Serial: throws a non-empty error; parallel: keeps the first for agree().
+  void defer(const std::string& error) const;
+  void write_dataset(const std::string& name, hid_t type, const void* data, std::size_t local_rows, std::size_t cols,
+                     std::size_t offset, std::size_t total_rows, const std::string& unit, bool once) const;
+  mutable std::string pending_;  // this rank's first error since the last agreement (parallel files)
   std::string path_;
   Handle h_;
   Handle dxpl_;  // collective transfers (parallel files)
