@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <unistd.h>
 
 #include "grains/version.hpp"
 #include "io/checkpoint/h5_file.hpp"
+#include "sim/parallel/comm.hpp"
+#include "sim/parallel/id_blocks.hpp"
 
 namespace grains::io {
 
@@ -28,27 +31,29 @@ void fsync_path(const fs::path& p, bool directory) {
   if (rc != 0) throw CheckpointError("fsync of '" + p.string() + "' failed: " + std::strerror(e));
 }
 
-void write_particles(const h5::File& f, sim::ParticleStore& p) {
+// The owned particles of `p` as rows [offset, offset + n_owned) of `total`
+// (a serial file: offset 0, total n_owned).
+void write_particles(const h5::File& f, sim::ParticleStore& p, std::size_t offset, std::size_t total) {
   const std::size_t n = p.n_owned();
   f.group("/particles");
-  f.attribute("/particles", "count", std::to_string(n));
+  f.attribute("/particles", "count", std::to_string(total));
   p.visit_fields([&](const char* name, const char* unit, auto& vec, int width) {
     using T = typename std::decay_t<decltype(vec)>::value_type;
     const std::string ds = std::string("/particles/") + name;
     const std::size_t cols = static_cast<std::size_t>(h5::Elem<T>::n) * static_cast<std::size_t>(width);
-    f.write_raw(ds, h5::Elem<T>::type(), vec.data(), n, cols, unit);  // owned rows only
+    f.write_rows(ds, h5::Elem<T>::type(), vec.data(), n, cols, offset, total, unit);  // owned rows only
     if constexpr (std::is_same_v<T, sim::Quat>) f.attribute(ds, "components", "x y z w");
   });
 }
 
 // Rigid clumps (scenes with clumps only): every per-body array of BodyStore.
-void write_bodies(const h5::File& f, sim::BodyStore& b) {
+void write_bodies(const h5::File& f, sim::BodyStore& b, std::size_t offset, std::size_t total) {
   f.group("/bodies");
-  f.attribute("/bodies", "count", std::to_string(b.size()));
+  f.attribute("/bodies", "count", std::to_string(total));
   b.visit_fields([&](const char* name, const char* unit, auto& vec) {
     using T = typename std::decay_t<decltype(vec)>::value_type;
     const std::string ds = std::string("/bodies/") + name;
-    f.write_vector(ds, vec, 1, unit);
+    f.write_vector_rows(ds, vec, 1, offset, total, unit);
     if constexpr (std::is_same_v<T, sim::Quat>) f.attribute(ds, "components", "x y z w");
   });
 }
@@ -93,38 +98,62 @@ void write_walls(const h5::File& f, const sim::Walls& walls) {
   f.write_vector("/walls/cylinder_velocity", cvel, 1, "m/s");
 }
 
+// Hidden, so that listings never see it.
+fs::path temporary_name(const fs::path& file) {
+  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  std::string tmp_name(1, '.');
+  tmp_name.append(file.filename().string()).append(".tmp");
+  return dir / tmp_name;
+}
+
+void write_head(const h5::File& f, const sim::Clock& clock, const CheckpointExtras& x) {
+  f.attribute("/", "format", kFormat);
+  f.attribute("/", "format_version", kFormatVersion);
+  f.attribute("/", "grains_version", kVersion);
+  f.group("/clock");
+  f.write_scalar("/clock/time", clock.time, "s");
+  f.write_scalar("/clock/dt", clock.dt, "s");
+  f.write_scalar("/clock/end_time", clock.end_time, "s");
+  f.write_scalar("/clock/step", clock.step, "");
+  f.write_scalar("/clock/n_steps", clock.n_steps, "");
+  f.group("/case");
+  f.write_string("/case/path", x.case_path);
+  f.write_string("/case/text", x.case_text);
+  f.write_string("/case/effective", x.case_effective);
+}
+
+void write_tail(const h5::File& f, const sim::Walls& walls, std::int64_t lost, const CheckpointExtras& x) {
+  write_walls(f, walls);
+  f.group("/scene");
+  f.write_scalar("/scene/lost_particles", lost, "");
+  f.group("/output");
+  f.write_vector("/output/vtk_frame_times", x.frame_times, 1, "s");
+  f.write_vector("/output/vtk_frame_steps", x.frame_steps, 1, "");
+  f.attribute("/", "complete", "yes");  // last: a reader refuses a file without it
+}
+
+// The renamed file's folder entry, made durable.
+void publish(const fs::path& tmp, const fs::path& file) {
+  std::error_code ec;
+  fs::rename(tmp, file, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw CheckpointError("could not write checkpoint '" + file.string() + "': rename failed: " + ec.message());
+  }
+  fsync_path(file.has_parent_path() ? file.parent_path() : fs::path("."), true);
+}
+
 }  // namespace
 
 void write_checkpoint(const fs::path& file, sim::Scene& s, const CheckpointExtras& x) {
-  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
-  std::string tmp_name(1, '.');  // hidden, so that listings never see it
-  tmp_name.append(file.filename().string()).append(".tmp");
-  const fs::path tmp = dir / tmp_name;
+  const fs::path tmp = temporary_name(file);
   try {
     auto f = h5::File::create(tmp.string());
-    f.attribute("/", "format", kFormat);
-    f.attribute("/", "format_version", kFormatVersion);
-    f.attribute("/", "grains_version", kVersion);
-    f.group("/clock");
-    f.write_scalar("/clock/time", s.clock.time, "s");
-    f.write_scalar("/clock/dt", s.clock.dt, "s");
-    f.write_scalar("/clock/end_time", s.clock.end_time, "s");
-    f.write_scalar("/clock/step", s.clock.step, "");
-    f.write_scalar("/clock/n_steps", s.clock.n_steps, "");
-    f.group("/case");
-    f.write_string("/case/path", x.case_path);
-    f.write_string("/case/text", x.case_text);
-    f.write_string("/case/effective", x.case_effective);
-    write_particles(f, s.particles);
-    if (s.particles.fields().has(sim::Field::Body)) write_bodies(f, s.bodies);
+    write_head(f, s.clock, x);
+    write_particles(f, s.particles, 0, s.particles.n_owned());
+    if (s.particles.fields().has(sim::Field::Body)) write_bodies(f, s.bodies, 0, s.bodies.size());
     write_neighbors(f, s.neighbors);
-    write_walls(f, s.walls);
-    f.group("/scene");
-    f.write_scalar("/scene/lost_particles", s.lost_particles, "");
-    f.group("/output");
-    f.write_vector("/output/vtk_frame_times", x.frame_times, 1, "s");
-    f.write_vector("/output/vtk_frame_steps", x.frame_steps, 1, "");
-    f.attribute("/", "complete", "yes");  // last: a reader refuses a file without it
+    write_tail(f, s.walls, s.lost_particles, x);
     f.close();
     fsync_path(tmp, false);
   } catch (const std::exception& e) {
@@ -132,13 +161,78 @@ void write_checkpoint(const fs::path& file, sim::Scene& s, const CheckpointExtra
     fs::remove(tmp, ec);  // do not leave a partial file behind (it may be what filled the disk)
     throw CheckpointError(std::string("could not write checkpoint '") + file.string() + "': " + e.what());
   }
-  std::error_code ec;
-  fs::rename(tmp, file, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw CheckpointError("could not write checkpoint '" + file.string() + "': rename failed: " + ec.message());
+  publish(tmp, file);
+}
+
+bool parallel_checkpoint_io() {
+  if (!h5::File::can_write_parallel()) return false;
+  const char* v = std::getenv("GRAINS_CHECKPOINT_IO");
+  const std::string how = v ? v : "";
+  if (how.empty() || how == "mpiio") return true;
+  if (how == "gather") return false;
+  throw CheckpointError("GRAINS_CHECKPOINT_IO='" + how + "': valid values are mpiio (the default under MPI) and gather");
+}
+
+void write_checkpoint_parallel(const fs::path& file, sim::Scene& s, sim::IdBlock& b, const CheckpointExtras& x) {
+  const auto& comm = sim::Comm::world();
+  const fs::path tmp = temporary_name(file);
+  std::string err;
+  try {
+    // Every call below is made by every rank in the same order; errors are
+    // agreed on at check() and close(), so a failure throws on all ranks at
+    // the same point and the file is closed (collectively) by all of them.
+    auto f = h5::File::create_parallel(tmp.string());
+    write_head(f, s.clock, x);
+    auto& q = b.particles;
+    write_particles(f, q, b.particle_offset, b.particle_total);
+    if (s.particles.fields().has(sim::Field::Body))
+      write_bodies(f, b.bodies, b.body_offset, b.body_total);
+    f.check();  // the bulk of the data: stop here on every rank if any failed
+    // The contact histories as CSR rows in global-id order (as gather_scene
+    // makes them): no build positions, so the continuing run rebuilds at
+    // its first step and carries the histories over by global ids.
+    f.group("/neighbor");
+    const int H = s.neighbors.history_size();
+    const bool last = comm.rank() == comm.size() - 1;  // writes the closing row_start (the entry count)
+    f.write_rows("/neighbor/row_start", H5T_NATIVE_UINT32, b.row_start.data(), q.n_owned() + (last ? 1 : 0), 1,
+                 b.particle_offset, b.particle_total + 1, "");
+    f.write_vector_rows("/neighbor/partner", b.partner, 1, b.entry_offset, b.entry_total, "");
+    f.write_rows("/neighbor/history", H5T_NATIVE_DOUBLE, b.history.data(), H > 0 ? b.partner.size() : 0,
+                 static_cast<std::size_t>(std::max(H, 1)), b.entry_offset, H > 0 ? b.entry_total : 0, kHistoryUnits);
+    f.write_scalar("/neighbor/history_size", static_cast<std::int32_t>(H), "");
+    f.write_scalar("/neighbor/skin", s.neighbors.skin(), "m");
+    f.write_vector("/neighbor/build_position", std::vector<sim::Vec3>{}, 1, "m");
+    f.write_vector_rows("/neighbor/build_row_id", q.id, 1, b.particle_offset, b.particle_total, "");
+    f.write_scalar("/neighbor/build_time", s.clock.time, "s");
+    f.write_scalar("/neighbor/builds", static_cast<std::int64_t>(s.neighbors.stats().builds), "");
+    f.group("/neighbor/plane_near");
+    for (std::size_t w = 0; w < s.walls.planes.size(); ++w)
+      f.write_vector("/neighbor/plane_near/" + std::to_string(w), std::vector<std::uint32_t>{}, 1, "");
+    f.group("/neighbor/cylinder_near");
+    for (std::size_t w = 0; w < s.walls.cylinders.size(); ++w)
+      f.write_vector("/neighbor/cylinder_near/" + std::to_string(w), std::vector<std::uint32_t>{}, 1, "");
+    write_tail(f, s.walls, b.lost_particles, x);
+    f.close();  // H5Fflush (MPI_File_sync on every rank), then the collective close
+  } catch (const std::exception& e) {
+    err = e.what();  // the same on every rank
   }
-  fsync_path(dir, true);
+  if (!err.empty()) {
+    std::error_code ec;
+    if (comm.root()) fs::remove(tmp, ec);  // no partial file left behind
+    throw CheckpointError("could not write checkpoint '" + file.string() + "': " + err);
+  }
+  // All ranks have closed the file; rank 0 makes it durable and publishes it.
+  if (comm.root()) {
+    try {
+      fsync_path(tmp, false);
+      publish(tmp, file);
+    } catch (const std::exception& e) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      err = e.what();
+    }
+  }
+  if (comm.agree_error(err)) throw CheckpointError(err);
 }
 
 namespace {

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/parallel/id_blocks.hpp"
 #include "sim/scene/scene.hpp"
 
 namespace grains::io {
@@ -40,6 +41,24 @@ struct CheckpointError : std::runtime_error {
 
 /// Writes the scene (owned particles only) to `file` atomically.
 void write_checkpoint(const std::filesystem::path& file, sim::Scene& s, const CheckpointExtras& extras);
+
+/// True when checkpoints of runs on several MPI ranks are written with
+/// parallel HDF5 (MPI-IO): HDF5 has it, and $GRAINS_CHECKPOINT_IO is unset
+/// or `mpiio`; `gather` writes them from rank 0 (gather_scene) instead.
+/// Throws CheckpointError for another value.
+bool parallel_checkpoint_io();
+
+/// Collective (every rank of MPI_COMM_WORLD): writes the run's state with
+/// parallel HDF5, each rank its block `b` (sim::id_blocks) at its offsets,
+/// into the same layout and content as write_checkpoint of gather_scene's
+/// scene. `extras` must be the same on every rank (they come from the case
+/// and the step count). Atomic as write_checkpoint: all ranks write a
+/// hidden temporary, flush (MPI_File_sync on every rank) and close it;
+/// then rank 0 fsyncs, renames and fsyncs the folder. A failure on any rank
+/// throws the same CheckpointError on all of them (after the temporary is
+/// removed).
+void write_checkpoint_parallel(const std::filesystem::path& file, sim::Scene& s, sim::IdBlock& b,
+                               const CheckpointExtras& extras);
 
 /// Restores a checkpoint into a scene built from the same case (same
 /// fields, law slots, walls and time step): particles, neighbour list,

@@ -150,6 +150,11 @@ int cmd_run(const std::vector<std::string>& a, bool check_only) {
   } catch (const grains::io::BlowUp& e) {
     err << "grains: " << e.what() << "\n";
     return 1;
+  } catch (const grains::io::OutputFailure& e) {
+    // Agreed on by every rank (the outputs and checkpoints agree on their
+    // errors before the run saves its state), so all stop here together.
+    err << "grains: " << e.what() << "\n";
+    return 1;
   } catch (const std::exception& e) {
     // An error that not every rank saw: say which rank, and stop them all
     // (the others may be waiting in a collective).

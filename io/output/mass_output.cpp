@@ -79,19 +79,28 @@ void MassOutput::resume(const sim::Scene& s) {
 }
 
 void MassOutput::write_row(const sim::Scene& s) {
-  open();
   if (s.clock.step == last_step_) return;
   last_step_ = s.clock.step;
   std::optional<std::pair<sim::Vec3, sim::Vec3>> plane;
   if (cfg_.has_plane) plane.emplace(cfg_.point, cfg_.normal);
   const MassCount c = count_mass(s, plane);  // collective under MPI
   const std::int64_t lost = s.exchange ? s.exchange->comm().sum(s.lost_particles) : s.lost_particles;
-  if (!sim::Comm::world().root()) return;
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "%lld,%.10g,%zu,%.10g,%lld\n", static_cast<long long>(s.clock.step), s.clock.time,
-                c.grains, c.mass, static_cast<long long>(lost));
-  out_ << buf;
-  if (!out_) throw std::runtime_error("could not write '" + file_.string() + "'");
+  // Rank 0 writes; a failure is agreed on, so that every rank stops together.
+  std::string err;
+  try {
+    open();
+    if (sim::Comm::world().root()) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "%lld,%.10g,%zu,%.10g,%lld\n", static_cast<long long>(s.clock.step),
+                    s.clock.time, c.grains, c.mass, static_cast<long long>(lost));
+      out_ << buf;
+      out_.flush();
+      if (!out_) throw std::runtime_error("could not write '" + file_.string() + "'");
+    }
+  } catch (const std::exception& e) {
+    err = e.what();
+  }
+  if (sim::Comm::world().agree_error(err)) throw std::runtime_error(err);
 }
 
 void MassOutput::run(sim::Scene& s) {

@@ -4,6 +4,7 @@
 #include "io/output/vtk_output.hpp"
 #include "sim/parallel/comm.hpp"
 #include "sim/parallel/gather.hpp"
+#include "sim/parallel/id_blocks.hpp"
 
 namespace grains::io {
 
@@ -58,11 +59,24 @@ fs::path CheckpointStage::save_to(sim::Scene& s, const fs::path& dir) {
     write_checkpoint(file, s, extras());
     return file;
   }
-  // Decomposed or periodic runs: the whole state gathered on rank 0, which
-  // writes it; histories are keyed by global ids, so any rank count can
-  // read it back. Every rank learns whether the write succeeded.
-  auto whole = sim::gather_scene(s);
+  // Decomposed or periodic runs: histories are keyed by global ids and
+  // particles sorted by them, so any rank count can read the file back.
   std::string err;
+  if (comm.parallel() && parallel_checkpoint_io()) {
+    // Parallel HDF5: each rank writes its block of the global-id order.
+    if (comm.root()) {
+      std::error_code ec;
+      fs::create_directories(dir, ec);
+      if (ec) err = "cannot create checkpoint folder '" + dir.string() + "': " + ec.message();
+    }
+    if (comm.agree_error(err)) throw CheckpointError(err);
+    auto block = sim::id_blocks(s);
+    write_checkpoint_parallel(file, s, block, extras());  // throws the same error on every rank
+    return file;
+  }
+  // Otherwise the whole state is gathered on rank 0, which writes it. Every
+  // rank learns whether the write succeeded.
+  auto whole = sim::gather_scene(s);
   if (comm.root()) {
     try {
       std::error_code ec;

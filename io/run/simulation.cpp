@@ -184,6 +184,7 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
     std::string err;
     try {
       probe_output_dir(opt.out_dir);
+      if (comm.parallel()) (void)parallel_checkpoint_io();  // an invalid $GRAINS_CHECKPOINT_IO is a set-up error
     } catch (const std::exception& e) {
       err = e.what();
     }
