@@ -14,6 +14,7 @@
 #include <vtkXMLImageDataWriter.h>
 
 #include "contact/correlation/solid_fraction.hpp"
+#include "sim/parallel/comm.hpp"
 
 namespace grains::io {
 
@@ -65,7 +66,29 @@ void SolidFractionOutput::finish(sim::Scene& s) {
 void SolidFractionOutput::write_frame(const sim::Scene& s) {
   std::array<double, 3> origin{};
   std::array<int, 3> dims{};
-  const auto values = field(s, origin, dims);
+  // Each rank spreads its own particles; the field is linear in them, so the
+  // whole scene's field is the sum over ranks, written by rank 0 (an error
+  // there is agreed, so every rank stops together).
+  auto values = field(s, origin, dims);
+  const auto& comm = sim::Comm::world();
+  if (comm.parallel()) comm.sum_in_place(values);
+  std::string err;
+  if (comm.root()) {
+    try {
+      write_file(s, values, origin, dims);
+    } catch (const std::exception& e) {
+      err = e.what();
+    }
+  }
+  if (comm.agree_error(err)) throw std::runtime_error(err);
+  if (!comm.root()) {
+    times_.push_back(s.clock.time);
+    last_step_ = s.clock.step;
+  }
+}
+
+void SolidFractionOutput::write_file(const sim::Scene& s, const std::vector<double>& values,
+                                     const std::array<double, 3>& origin, const std::array<int, 3>& dims) {
   vtkNew<vtkImageData> img;
   img->SetDimensions(dims[0], dims[1], dims[2]);
   img->SetOrigin(origin.data());

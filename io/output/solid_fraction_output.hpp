@@ -39,6 +39,8 @@ class SolidFractionOutput final : public sim::Stage {
   /// with the grid it used (origin, spacing, dims).
   std::vector<double> field(const sim::Scene& s, std::array<double, 3>& origin, std::array<int, 3>& dims) const;
   void write_frame(const sim::Scene& s);
+  void write_file(const sim::Scene& s, const std::vector<double>& values, const std::array<double, 3>& origin,
+                  const std::array<int, 3>& dims);
 
  private:
   std::filesystem::path dir_;
