@@ -10,6 +10,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "sim/parallel/bytes.hpp"
 #include "sim/parallel/comm.hpp"
 #include "sim/parallel/exchange.hpp"
 #include "sim/scene/build_scene.hpp"
@@ -25,18 +26,8 @@ std::uint64_t splitmix64(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
-template <class T>
-void put(std::vector<char>& b, const T& v) {
-  const auto* p = reinterpret_cast<const char*>(&v);
-  b.insert(b.end(), p, p + sizeof(T));
-}
-template <class T>
-T take(const char*& p) {
-  T v;
-  std::memcpy(&v, p, sizeof(T));
-  p += sizeof(T);
-  return v;
-}
+using bytes::put;
+using bytes::take;
 
 // One grain of the scene as sent to rank 0: id, kind, centre, radius or
 // semi-axes and orientation.

@@ -5,22 +5,14 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "sim/parallel/bytes.hpp"
+
 namespace grains::sim {
 
 namespace {
 
-template <class T>
-void put(std::vector<char>& b, const T& v) {
-  const auto* c = reinterpret_cast<const char*>(&v);
-  b.insert(b.end(), c, c + sizeof(T));
-}
-template <class T>
-T take(const char*& r) {
-  T v;
-  std::memcpy(reinterpret_cast<char*>(&v), r, sizeof(T));
-  r += sizeof(T);
-  return v;
-}
+using bytes::put;
+using bytes::take;
 
 void pack_body(BodyStore& b, std::size_t k, std::vector<char>& buf) {
   b.visit_fields([&](const char*, const char*, auto& vec) { put(buf, vec[k]); });

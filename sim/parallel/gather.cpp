@@ -5,23 +5,14 @@
 #include <map>
 #include <numeric>
 
+#include "sim/parallel/bytes.hpp"
 #include "sim/parallel/exchange.hpp"
 
 namespace grains::sim {
 
 namespace {
-template <class T>
-void put(std::vector<char>& b, const T& v) {
-  const auto* c = reinterpret_cast<const char*>(&v);
-  b.insert(b.end(), c, c + sizeof(T));
-}
-template <class T>
-T take(const char*& r) {
-  T v;
-  std::memcpy(reinterpret_cast<char*>(&v), r, sizeof(T));
-  r += sizeof(T);
-  return v;
-}
+using bytes::put;
+using bytes::take;
 }  // namespace
 
 Scene gather_scene(Scene& s) {

@@ -7,23 +7,14 @@
 #include <tuple>
 #include <numeric>
 
+#include "sim/parallel/bytes.hpp"
 #include "sim/parallel/exchange.hpp"
 
 namespace grains::sim {
 
 namespace {
-template <class T>
-void put(std::vector<char>& b, const T& v) {
-  const auto* c = reinterpret_cast<const char*>(&v);
-  b.insert(b.end(), c, c + sizeof(T));
-}
-template <class T>
-T take(const char*& r) {
-  T v;
-  std::memcpy(reinterpret_cast<char*>(&v), r, sizeof(T));
-  r += sizeof(T);
-  return v;
-}
+using bytes::put;
+using bytes::take;
 
 std::size_t owner(const std::vector<std::int64_t>& cuts, std::int64_t id) {
   const auto it = std::upper_bound(cuts.begin(), cuts.end(), id);
