@@ -41,3 +41,22 @@ same_as_reference() {
     cmp -s "$f" "$out/frames/$(basename "$f")" || fail "frame $(basename "$f") differs"
   done
 }
+
+# After kill number $2: every checkpoint left in output folder $1 must open.
+checkpoints_readable() {
+  local f
+  for f in "$1"/checkpoints/checkpoint_*.h5; do
+    [ -e "$f" ] || continue
+    h5dump -H "$f" >/dev/null 2>&1 || fail "corrupt checkpoint $f after kill $2"
+  done
+}
+
+# Finishes the run in output folder $1: resumes from its newest checkpoint,
+# or runs from the start when no checkpoint was written before the kills.
+finish_run() {
+  if [ -n "$(newest "$1")" ]; then
+    "$GRAINS" run "$CASE" --resume "$1" -q || fail "the final resume failed"
+  else
+    "$GRAINS" run "$CASE" -o "$1" -q || fail "the final run failed"
+  fi
+}

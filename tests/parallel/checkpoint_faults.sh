@@ -65,16 +65,9 @@ for ((k = 1; k <= KILLS; k++)); do
   kill_tree "$pid"
   wait "$pid" 2>/dev/null
   echo "kill $k after ${delay}s: newest $(basename "$(newest "$OUT")")"
-  for f in "$OUT"/checkpoints/checkpoint_*.h5; do
-    [ -e "$f" ] || continue
-    h5dump -H "$f" >/dev/null 2>&1 || fail "corrupt checkpoint $f after kill $k"
-  done
+  checkpoints_readable "$OUT" "$k"
 done
-if [ -n "$(newest "$OUT")" ]; then
-  "$GRAINS" run "$CASE" --resume "$OUT" -q || fail "the final resume failed"
-else
-  "$GRAINS" run "$CASE" -o "$OUT" -q || fail "the final run failed"
-fi
+finish_run "$OUT"
 same_as_reference "$OUT"
 echo "PASS: $KILLS kills of every process, the resumed run equals the uninterrupted one"
 
