@@ -316,7 +316,14 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
       status = Pw85Status::ok;  // bracket at the resolution the data allow
       break;
     }
-    const double next = std::abs(step) <= 0.5 * last_step ? t * exp_step(step) : inf;
+    // Far from the maximiser ell' can be close to 0 and a Newton step in u
+    // huge (e.g. +584 for crossed needles, landing at 1 - lambda ~ 1e-254);
+    // such steps are cut to kMaxStep: the step keeps its sign, so it still
+    // moves towards the maximiser, and the bracket catches an overshoot.
+    constexpr double kMaxStep = 4.0;
+    double next = inf;
+    if (std::abs(step) <= 0.5 * last_step)
+      next = std::abs(step) <= kMaxStep ? t * exp_step(step) : t * (step > 0.0 ? e4 : 1.0 / e4);
     if (next > t_lo && next < t_hi) {
       t = next;
       last_step = std::abs(step);
