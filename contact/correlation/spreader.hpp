@@ -55,6 +55,13 @@ class Spreader {
   std::vector<double> ux_, uy_, uz_;         // sorted fine-grid coordinates
   std::vector<std::int64_t> order_;          // sorted position -> caller index
   std::vector<std::size_t> sub_begin_;       // subproblem boundaries (size + 1)
+  std::vector<std::uint32_t> bin_;           // set_points scratch (kept: no page faults on reuse)
+  struct Packed {
+    double u[3];
+    std::int64_t index;
+  };
+  std::vector<Packed> packed_;               // set_points scratch: sorted coordinates + index
+  mutable std::vector<double> strengths_;    // spread scratch: strengths in sorted order
 };
 
 }  // namespace grains::correlation

@@ -1,0 +1,47 @@
+#pragma once
+// The arithmetic core of spreading and interpolation, compiled twice: for the
+// baseline instruction set (spreader.cpp) and with AVX2 + FMA
+// (spreader_avx2.cpp, x86-64 only), chosen at run time by the CPU
+// (spreader.cpp). Both copies see the same source (spreader_kernels.inc);
+// the tasks below are plain data so that no inline library template is
+// instantiated in the AVX2 unit (the linker could otherwise keep its AVX2
+// copy for the baseline code as well).
+#include <cstddef>
+#include <cstdint>
+
+#include "contact/correlation/es_kernel.hpp"
+
+namespace grains::correlation::detail {
+
+// Spread points [begin, end) (sorted order) into a zeroed subgrid of
+// s0 x s1 x s2 cells (nc doubles each) whose first node is lo.
+struct SpreadTask {
+  const KernelPolynomial* kernel;
+  const double *ux, *uy, *uz;  // sorted fine-grid coordinates
+  const double* c;             // strengths in sorted order, nc per point
+  std::size_t begin, end;
+  int lo[3];
+  int s0, s1;
+  double* sub;
+};
+
+// c_out[2 order[s]] (+1) = interpolation of the complex periodic fine grid
+// (n0 x n1 x n2) at the sorted points [begin, end).
+struct InterpolateTask {
+  const KernelPolynomial* kernel;
+  const double *ux, *uy, *uz;
+  const std::int64_t* order;
+  const double* grid;
+  int n0, n1, n2;
+  std::size_t begin, end;
+  double* c;
+};
+
+void spread_baseline(int width, int nc, const SpreadTask& t);
+void interpolate_baseline(int width, const InterpolateTask& t);
+#if GRAINS_SPREAD_AVX2
+void spread_avx2(int width, int nc, const SpreadTask& t);
+void interpolate_avx2(int width, const InterpolateTask& t);
+#endif
+
+}  // namespace grains::correlation::detail
