@@ -60,38 +60,12 @@ std::vector<Pair> make_pairs(double ar, double lo, double hi, std::uint64_t seed
   return v;
 }
 
-void BM_Cold(benchmark::State& state) {
+// Cold solves of the 1024 pairs of the class with the given options, and the
+// worst relative error of mu^2 against the reference at the same options (on
+// a subset: the reference is slow), so speed and accuracy come together.
+void run_cold(benchmark::State& state, const Pw85Options& opt) {
   const double ar = state.range(0);
   const std::vector<Pair> pairs = make_pairs(ar, 0.5, 1.0, 1);
-  double worst = 0;
-  for (int k = 0; k < kPairs; k += 8) {  // accuracy on a subset (reference is slow)
-    const Pw85Result res = pw85_contact(pairs[k].r, pairs[k].q1, pairs[k].q2);
-    worst = std::max(worst, grains::test::rel_err(res.mu2, grains::test::pw85_reference(pairs[k].r, pairs[k].q1, pairs[k].q2).mu2));
-  }
-  long evals = 0, calls = 0;
-  int i = 0;
-  for (auto _ : state) {
-    const Pair& p = pairs[i];
-    const Pw85Result res = pw85_contact(p.r, p.q1, p.q2);
-    benchmark::DoNotOptimize(res.mu2);
-    evals += res.iterations;
-    ++calls;
-    i = (i + 1) & (kPairs - 1);
-  }
-  state.counters["evals"] = double(evals) / calls;
-  state.counters["max_rel_err"] = worst;
-}
-
-// Cold solves with options: range(1) = 1 for trusted input (no input checks,
-// as the DEM calls it), range(2) = -log10 of the Newton tolerance in u
-// (default 7). The worst relative error of mu^2 against the reference is
-// measured at the same options, so speed and accuracy are reported together.
-void BM_ColdOptions(benchmark::State& state) {
-  const double ar = state.range(0);
-  const std::vector<Pair> pairs = make_pairs(ar, 0.5, 1.0, 1);
-  Pw85Options opt;
-  opt.trusted_input = state.range(1) == 1;
-  opt.tolerance = std::pow(10.0, -static_cast<double>(state.range(2)));
   double worst = 0;
   for (int k = 0; k < kPairs; k += 8) {
     const Pw85Result res = pw85_contact(pairs[k].r, pairs[k].q1, pairs[k].q2, opt);
@@ -109,6 +83,18 @@ void BM_ColdOptions(benchmark::State& state) {
   }
   state.counters["evals"] = double(evals) / calls;
   state.counters["max_rel_err"] = worst;
+}
+
+// The public default: input checked, full double precision.
+void BM_Cold(benchmark::State& state) { run_cold(state, Pw85Options{}); }
+
+// range(1) = 1 for trusted input (no input checks, as the DEM calls it),
+// range(2) = -log10 of the Newton tolerance in u (default 7).
+void BM_ColdOptions(benchmark::State& state) {
+  Pw85Options opt;
+  opt.trusted_input = state.range(1) == 1;
+  opt.tolerance = std::pow(10.0, -static_cast<double>(state.range(2)));
+  run_cold(state, opt);
 }
 
 void BM_Warm(benchmark::State& state) {
