@@ -99,11 +99,10 @@ def main():
     row("ellipsoid_maximum", None, ell_sweep and ell_sweep["peak_aspect_ratio"], ci_text="(long only)")
     row("dimer_rise", dim_ci and dim_ci["rise"], None, long_text="(CI only)")
     row("dimer_maximum", None, dim_sweep and dim_sweep["peak_aspect_ratio"], ci_text="(long only)")
-    row("clump_resolution_first_step", res_ci and res_ci["step"], res and res["first_change"],
-        long_text=res and f"({res['first_change']:.4f}, mean of {len(res['phi_all']) // len(res['grid'])} seeds)")
-    row("clump_resolution_effect", None, res and res["phi"][-1] - res["phi"][0], ci_text="(long only)")
-    row("clump_resolution_convergence", None, res and res["last_change"] / res["last_change_se"],
-        ci_text="(long only)")
+    row("clump_resolution_first_step", res_ci and res_ci["step"], res and res["change"][0],
+        long_text=res and f"({res['change'][0]:.4f}, mean of {len(res['phi_all']) // len(res['grid'])} seeds)")
+    row("clump_resolution_effect", None, res and res["largest_change_in_se"], ci_text="(long only)")
+    row("clump_resolution_convergence", None, res and res["last_change_in_se"], ci_text="(long only)")
 
     # ------------------------------------------------------------ plots
     figs = []
@@ -387,8 +386,9 @@ def main():
             f"{p:.4f} ± {e:.4f}" for p, e in zip(res["phi"], res["phi_se"])) + " |")
         L.append("| s per pour | " + " | ".join(f"{w:.0f}" for w in res["wall_s_per_pour"]) + " |")
         L.append("")
-        L.append(f"First change {res['first_change']:.4f}, last change {res['last_change']:.4f} ± "
-                 f"{res['last_change_se']:.4f} (s.e.).\n")
+        L.append("Changes between successive grids: " + ", ".join(
+            f"{a:g} → {b:g}: {d:+.4f} ± {e:.4f}" for a, b, d, e in
+            zip(res["grid"], res["grid"][1:], res["change"], res["change_se"])) + " (± s.e.).\n")
     if res_ci:
         L.append(f"CI (seed 1): φ(grid 4) = {res_ci['phi_grid4']:.4f}, φ(grid 6) = {res_ci['phi_grid6']:.4f}, "
                  f"step {res_ci['step']:.4f}.\n")
