@@ -59,6 +59,7 @@ def main():
     jam_ci, jam_long = load(results, "jamming_ci"), load(results, "jamming_long")
     ell_ci, ell_sweep = load(results, "ellipsoid_ci"), load(results, "ellipsoid_sweep")
     dim_ci, dim_sweep = load(results, "dimer_ci"), load(results, "dimer_sweep")
+    res_ci, res = load(results, "clump_resolution_ci"), load(results, "clump_resolution")
     meta = load(results, "meta") or {}
 
     def mu_phi(rec, mu):
@@ -98,6 +99,10 @@ def main():
     row("ellipsoid_maximum", None, ell_sweep and ell_sweep["peak_aspect_ratio"], ci_text="(long only)")
     row("dimer_rise", dim_ci and dim_ci["rise"], None, long_text="(CI only)")
     row("dimer_maximum", None, dim_sweep and dim_sweep["peak_aspect_ratio"], ci_text="(long only)")
+    row("clump_resolution_first_step", res_ci and res_ci["step"], res and res["change"][0],
+        long_text=res and f"({res['change'][0]:.4f}, mean of {len(res['phi_all']) // len(res['grid'])} seeds)")
+    row("clump_resolution_effect", None, res and res["largest_change_in_se"], ci_text="(long only)")
+    row("clump_resolution_convergence", None, res and res["last_change_in_se"], ci_text="(long only)")
 
     # ------------------------------------------------------------ plots
     figs = []
@@ -209,6 +214,25 @@ def main():
         plt.close()
         figs.append(("dimers.png", "Poured frictionless dimers of the volume of a sphere: bulk packing fraction "
                                    "against bond aspect ratio (1 = spheres)."))
+
+    if res:
+        plt.figure(figsize=(5.2, 3.6))
+        plt.errorbar(res["n3"], res["phi"], yerr=res["phi_se"], fmt="o-", capsize=3,
+                     label=f"long: 250 cubes, mean ± s.e. of {len(res['phi_all']) // len(res['grid'])} seeds")
+        for g, n, p in zip(res["grid"], res["n3"], res["phi"]):
+            plt.annotate(f"grid {g:g}", (n, p), fontsize=7, textcoords="offset points", xytext=(4, 4))
+        if res_ci:
+            plt.plot([res["n3"][0], res["n3"][1]], [res_ci["phi_grid4"], res_ci["phi_grid6"]], "s",
+                     label="CI: grid 4 and 6, seed 1")
+        plt.xscale("log")
+        plt.xlabel("balls per cube n₃")
+        plt.ylabel("bulk packing fraction φ")
+        plt.legend(fontsize=7)
+        plt.tight_layout()
+        plt.savefig(os.path.join(FIG, "clump_resolution.png"), dpi=120)
+        plt.close()
+        figs.append(("clump_resolution.png", "Poured frictional cube clumps in a periodic box: bulk packing "
+                                             "fraction against the number of balls per cube."))
 
     # ------------------------------------------------------------ text
     today = meta.get("date", datetime.date.today().isoformat())
@@ -347,6 +371,27 @@ def main():
         L.append("")
         L.append(f"Densest at aspect ratio {dim_sweep['peak_aspect_ratio']:g} (Baule et al. 2013: 1.4–1.5 for "
                  "jammed frictionless dimers).\n")
+    if res or res_ci:
+        L.append("## Clump resolution: φ of poured cubes against n₃\n")
+        L.append("tests/regression/clump (clump_pour.hpp, `pour_periodic`): cases/pour_clumps/cube.off decomposed at "
+                 "grid N (μ = 0.25), 250 cubes of bounding radius 0.8 mm poured from a random fill up to 64 mm "
+                 "onto a floor in a 6 mm × 6 mm box periodic in x and y (no side walls), E = 1 MPa, e = 0.5, "
+                 "friction 0.5, 0.18 s; φ of the union of balls (grid of sample points, periodic images) from "
+                 "2 mm above the floor to 2 mm below the free surface.\n")
+    if res:
+        L.append("| grid N | " + " | ".join(f"{g:g}" for g in res["grid"]) + " |")
+        L.append("|---|" + "---|" * len(res["grid"]))
+        L.append("| n₃ | " + " | ".join(f"{n:g}" for n in res["n3"]) + " |")
+        L.append("| φ (mean ± s.e.) | " + " | ".join(
+            f"{p:.4f} ± {e:.4f}" for p, e in zip(res["phi"], res["phi_se"])) + " |")
+        L.append("| s per pour | " + " | ".join(f"{w:.0f}" for w in res["wall_s_per_pour"]) + " |")
+        L.append("")
+        L.append("Changes between successive grids: " + ", ".join(
+            f"{a:g} → {b:g}: {d:+.4f} ± {e:.4f}" for a, b, d, e in
+            zip(res["grid"], res["grid"][1:], res["change"], res["change_se"])) + " (± s.e.).\n")
+    if res_ci:
+        L.append(f"CI (seed 1): φ(grid 4) = {res_ci['phi_grid4']:.4f}, φ(grid 6) = {res_ci['phi_grid6']:.4f}, "
+                 f"step {res_ci['step']:.4f}.\n")
     with open(DOC, "w") as f:
         f.write("\n".join(L).rstrip() + "\n")
     print("wrote", DOC, "and", len(figs), "plots in", FIG)

@@ -64,12 +64,14 @@ run beverloo_ci beverloo_ci "$T/test_packing" --gtest_filter=Packing.SiloDischar
 run jamming_ci jamming_ci "$T/test_packing" --gtest_filter=Packing.JammedFrictionlessSpheres
 run ellipsoid_ci ellipsoid_ci "$T/test_ellipsoid_packing"
 run dimer_ci dimer_ci "$T/clump/test_clump_regression" --gtest_filter=ClumpRegression.DimersOfAspectRatio1p5PackDenserThanSpheres
+run clump_resolution_ci clump_resolution_ci "$T/clump/test_clump_regression" --gtest_filter=ClumpRegression.CubeFirstResolutionStepLoosensThePour
 if [ "$CI_ONLY" = 0 ]; then
   run jamming_long jamming_long "$T/test_packing_long" --gtest_filter=PackingLong.JammedFrictionlessSpheres
   run friction_seeds friction_seeds_ci "$T/test_packing_long" --gtest_filter=PackingLong.FrictionSweepSeedSpread
   run friction_long friction_sweep_long "$T/test_packing_long" --gtest_filter=PackingLong.FrictionSweepPouredSpheres
   run beverloo_long beverloo_long "$T/test_packing_long" --gtest_filter=PackingLong.SiloDischargeFollowsBeverloo
-  run dimer_sweep dimer_sweep "$T/clump/test_clump_regression_long"
+  run dimer_sweep dimer_sweep "$T/clump/test_clump_regression_long" --gtest_filter=ClumpRegressionLong.DimerAspectRatioSweep
+  run clump_resolution clump_resolution "$T/clump/test_clump_regression_long" --gtest_filter=ClumpRegressionLong.CubeResolutionSweep
   run ellipsoid_sweep ellipsoid_sweep env BUILD="$BUILD" REUSE="$REUSE" bash "$HERE/ellipsoid_packing_sweep.sh"
 fi
 

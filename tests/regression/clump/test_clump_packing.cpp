@@ -5,8 +5,11 @@
 //   pour (reference, ../shared/REFERENCES.md: frictionless jammed dimers
 //   reach a maximum of about 0.70 near aspect ratio 1.4-1.5, spheres 0.64;
 //   Baule et al., Nat. Commun. 4 (2013)).
-// * (label long) phi of poured cube clumps against the decomposition
-//   resolution n3 (recorded in docs/decomposition.md).
+// * The first resolution step of the cube: at grid 4 (8 balls) the
+//   decomposition is nearly a sphere, at grid 6 (40 balls) it has faces and
+//   edges, and the poured bed is looser by far more than the seed noise
+//   (seed 1 of the long sweep ClumpRegressionLong.CubeResolutionSweep, which
+//   records phi against n3 in docs/decomposition.md).
 //
 // The solid fraction of a bulk box is measured on a grid of sample points
 // (a point counts once however many balls cover it, so the overlapping balls
@@ -43,6 +46,25 @@ TEST(ClumpRegression, DimersOfAspectRatio1p5PackDenserThanSpheres) {
                                  .num("phi_dimers", dimers.phi)
                                  .num("rise", dimers.phi - spheres.phi));
   packing::expect_in_band(rise, dimers.phi - spheres.phi, "dimers - spheres");
+}
+
+TEST(ClumpRegression, CubeFirstResolutionStepLoosensThePour) {
+  const packing::Reference step = packing::reference("clump_resolution_first_step");
+  PeriodicPourConfig c;  // seed 1 of the long sweep
+  c.grid = 4;
+  const auto coarse = pour_periodic(c);
+  c.grid = 6;
+  const auto fine = pour_periodic(c);
+  for (const auto* r : {&coarse, &fine}) {
+    EXPECT_EQ(r->bodies, static_cast<std::size_t>(c.count));
+    EXPECT_LT(r->rms_speed, packing::settled_speed());
+  }
+  packing::record("clump_resolution_ci", packing::Record()
+                                             .str("case", "250 frictional cubes, 6 mm periodic box, seed 1, grid 4 and 6")
+                                             .num("phi_grid4", coarse.phi)
+                                             .num("phi_grid6", fine.phi)
+                                             .num("step", fine.phi - coarse.phi));
+  packing::expect_in_band(step, fine.phi - coarse.phi, "phi(grid 6) - phi(grid 4), seed 1");
 }
 
 }  // namespace
