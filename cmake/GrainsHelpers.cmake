@@ -51,3 +51,11 @@ function(grains_add_subdirs)
     add_subdirectory(${d})
   endforeach()
 endfunction()
+
+# grains_mpi_test_env(test...): tests that start processes under mpirun get
+# full stack unwinding for LeakSanitizer in a sanitized build (no-op otherwise).
+function(grains_mpi_test_env)
+  if(GRAINS_MPI_SANITIZER_ENV)
+    set_tests_properties(${ARGN} PROPERTIES ENVIRONMENT_MODIFICATION "${GRAINS_MPI_SANITIZER_ENV}")
+  endif()
+endfunction()
