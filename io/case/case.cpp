@@ -111,7 +111,7 @@ class CaseParser {
     if (!v_.check_map(n, d, "parallel")) return;
     auto& par = c_.scene.parallel;
     par.where = v_.where(n);
-    par.deterministic = v_.boolean(n, d, "deterministic", "parallel", false);
+    if (n["deterministic"]) par.deterministic = v_.boolean(n, d, "deterministic", "parallel", false);
     par.balance_threshold = v_.number(n, d, "balance_threshold", "parallel", 1.2);
     if (n["decomposition"]) {
       const auto v = v_.vec3(n, d, "decomposition", "parallel", sim::Vec3::Zero());

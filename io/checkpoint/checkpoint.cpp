@@ -72,6 +72,7 @@ void write_neighbors(const h5::File& f, const sim::NeighborList& nl) {
   f.write_vector("/neighbor/build_row_id", b.row_id, 1, "");
   f.write_scalar("/neighbor/build_time", b.time, "s");
   f.write_scalar("/neighbor/builds", static_cast<std::int64_t>(b.builds), "");
+  f.write_scalar("/neighbor/build_growth", b.growth, "m");
   f.group("/neighbor/plane_near");
   for (std::size_t w = 0; w < nl.plane_near.size(); ++w)
     f.write_vector("/neighbor/plane_near/" + std::to_string(w), nl.plane_near[w], 1, "");
@@ -122,13 +123,34 @@ void write_head(const h5::File& f, const sim::Clock& clock, const CheckpointExtr
   f.write_string("/case/effective", x.case_effective);
 }
 
-void write_tail(const h5::File& f, const sim::Walls& walls, std::int64_t lost, const CheckpointExtras& x) {
+// The radius-growth servo (Scene::growth): what it measured last, the rate
+// in force and the phase of the schedule.
+void write_growth(const h5::File& f, const sim::GrowthServo& g) {
+  f.group("/growth");
+  f.write_scalar("/growth/started", static_cast<std::int32_t>(g.started), "");
+  f.write_scalar("/growth/capped", static_cast<std::int32_t>(g.capped), "");
+  f.write_scalar("/growth/last_measure", g.last_measure, "step");
+  f.write_scalar("/growth/overlap", g.overlap, "");
+  f.write_scalar("/growth/rate", g.rate, "1/s");
+  f.write_scalar("/growth/phase_rate", g.phase_rate, "1/s");
+  f.write_scalar("/growth/phase_target", g.phase_target, "");
+}
+
+void write_tail(const h5::File& f, const sim::Walls& walls, const sim::GrowthServo& growth, std::int64_t lost,
+                const CheckpointExtras& x) {
   write_walls(f, walls);
+  write_growth(f, growth);
   f.group("/scene");
   f.write_scalar("/scene/lost_particles", lost, "");
   f.group("/output");
   f.write_vector("/output/vtk_frame_times", x.frame_times, 1, "s");
   f.write_vector("/output/vtk_frame_steps", x.frame_steps, 1, "");
+  if (!x.cuts[0].empty()) {
+    f.group("/parallel");
+    f.write_vector("/parallel/cuts_x", x.cuts[0], 1, "m");
+    f.write_vector("/parallel/cuts_y", x.cuts[1], 1, "m");
+    f.write_vector("/parallel/cuts_z", x.cuts[2], 1, "m");
+  }
   f.attribute("/", "complete", "yes");  // last: a reader refuses a file without it
 }
 
@@ -153,7 +175,7 @@ void write_checkpoint(const fs::path& file, sim::Scene& s, const CheckpointExtra
     write_particles(f, s.particles, 0, s.particles.n_owned());
     if (s.particles.fields().has(sim::Field::Body)) write_bodies(f, s.bodies, 0, s.bodies.size());
     write_neighbors(f, s.neighbors);
-    write_tail(f, s.walls, s.lost_particles, x);
+    write_tail(f, s.walls, s.growth, s.lost_particles, x);
     f.close();
     fsync_path(tmp, false);
   } catch (const std::exception& e) {
@@ -205,13 +227,14 @@ void write_checkpoint_parallel(const fs::path& file, sim::Scene& s, sim::IdBlock
     f.write_vector_rows("/neighbor/build_row_id", q.id, 1, b.particle_offset, b.particle_total, "");
     f.write_scalar("/neighbor/build_time", s.clock.time, "s");
     f.write_scalar("/neighbor/builds", static_cast<std::int64_t>(s.neighbors.stats().builds), "");
+    f.write_scalar("/neighbor/build_growth", 0.0, "m");
     f.group("/neighbor/plane_near");
     for (std::size_t w = 0; w < s.walls.planes.size(); ++w)
       f.write_vector("/neighbor/plane_near/" + std::to_string(w), std::vector<std::uint32_t>{}, 1, "");
     f.group("/neighbor/cylinder_near");
     for (std::size_t w = 0; w < s.walls.cylinders.size(); ++w)
       f.write_vector("/neighbor/cylinder_near/" + std::to_string(w), std::vector<std::uint32_t>{}, 1, "");
-    write_tail(f, s.walls, b.lost_particles, x);
+    write_tail(f, s.walls, s.growth, b.lost_particles, x);
     f.close();  // H5Fflush (MPI_File_sync on every rank), then the collective close
   } catch (const std::exception& e) {
     err = e.what();  // the same on every rank
@@ -308,6 +331,9 @@ void read_neighbors(const h5::File& f, sim::Scene& s) {
   f.read_vector("/neighbor/build_row_id", b.row_id, f.shape("/neighbor/build_row_id").first, 1);
   b.time = f.read_scalar<double>("/neighbor/build_time");
   b.builds = static_cast<long>(f.read_scalar<std::int64_t>("/neighbor/builds"));
+  // Radius growth since the build (absent from checkpoints before 2026-11-21:
+  // a growing run then rebuilds its list at its first step).
+  if (f.exists("/neighbor/build_growth")) b.growth = f.read_scalar<double>("/neighbor/build_growth");
   auto near = [&](const std::string& g, std::vector<std::vector<std::uint32_t>>& lists, std::size_t walls) {
     lists.assign(walls, {});
     for (std::size_t w = 0; w < walls; ++w) {
@@ -320,6 +346,18 @@ void read_neighbors(const h5::File& f, sim::Scene& s) {
   near("/neighbor/plane_near", nl.plane_near, s.walls.planes.size());
   near("/neighbor/cylinder_near", nl.cylinder_near, s.walls.cylinders.size());
   nl.restore(s.particles, std::move(b));
+}
+
+void read_growth(const h5::File& f, sim::GrowthServo& g) {
+  g = {};  // checkpoints before 2026-11-21 have none: the servo measures at the first step
+  if (!f.exists("/growth/started")) return;
+  g.started = f.read_scalar<std::int32_t>("/growth/started") != 0;
+  g.capped = f.read_scalar<std::int32_t>("/growth/capped") != 0;
+  g.last_measure = f.read_scalar<std::int64_t>("/growth/last_measure");
+  g.overlap = f.read_scalar<double>("/growth/overlap");
+  g.rate = f.read_scalar<double>("/growth/rate");
+  g.phase_rate = f.read_scalar<double>("/growth/phase_rate");
+  g.phase_target = f.read_scalar<double>("/growth/phase_target");
 }
 
 void read_walls(const h5::File& f, sim::Walls& walls) {
@@ -386,12 +424,17 @@ CheckpointExtras read_checkpoint(const fs::path& file, sim::Scene& s) {
     s.clock.step = step;
     s.clock.time = f.read_scalar<double>("/clock/time");
     s.lost_particles = f.read_scalar<std::int64_t>("/scene/lost_particles");
+    read_growth(f, s.growth);
     CheckpointExtras x;
     x.case_path = f.read_string("/case/path");
     x.case_text = f.read_string("/case/text");
     x.case_effective = f.read_string("/case/effective");
     f.read_vector("/output/vtk_frame_times", x.frame_times, f.shape("/output/vtk_frame_times").first, 1);
     f.read_vector("/output/vtk_frame_steps", x.frame_steps, f.shape("/output/vtk_frame_steps").first, 1);
+    if (f.exists("/parallel/cuts_x")) {
+      const char* names[3] = {"/parallel/cuts_x", "/parallel/cuts_y", "/parallel/cuts_z"};
+      for (int d = 0; d < 3; ++d) f.read_vector(names[d], x.cuts[d], f.shape(names[d]).first, 1);
+    }
     return x;
   } catch (const h5::H5Error& e) {
     throw CheckpointError(e.what());

@@ -14,6 +14,7 @@
 // flushed and fsync'ed, renamed over the final name, and the folder fsync'ed.
 // A crash at any moment leaves either the previous checkpoint set or the new
 // one, never a partial file under a checkpoint name.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -31,6 +32,9 @@ struct CheckpointExtras {
   std::string case_effective;  // YAML after --set overrides
   std::vector<double> frame_times;        // VTK series so far (s)
   std::vector<std::int64_t> frame_steps;
+  /// The cut planes of the rank grid (runs on several MPI ranks; empty
+  /// otherwise): a continuation on the same grid takes them over.
+  std::array<std::vector<double>, 3> cuts;
 };
 
 /// Thrown for a checkpoint that cannot be written or read, or that does not

@@ -3,7 +3,9 @@
 #include "io/output/progress.hpp"
 #include "io/output/vtk_output.hpp"
 #include "sim/parallel/comm.hpp"
+#include "sim/parallel/exchange.hpp"
 #include "sim/parallel/gather.hpp"
+#include "sim/neighbor/neighbor_stage.hpp"
 #include "sim/parallel/id_blocks.hpp"
 
 namespace grains::io {
@@ -34,8 +36,9 @@ void CheckpointStage::restarted_from(const fs::path& file, std::int64_t step) {
   if (blow_up_) blow_up_->set_last_good_checkpoint(file.string());
 }
 
-CheckpointExtras CheckpointStage::extras() const {
+CheckpointExtras CheckpointStage::extras(const sim::Scene& s) const {
   CheckpointExtras x = case_info_;
+  if (s.exchange && s.exchange->comm().parallel()) x.cuts = s.exchange->decomposition().cuts();
   if (vtk_) {
     x.frame_times = vtk_->frame_times();
     x.frame_steps = vtk_->frame_steps();
@@ -56,11 +59,19 @@ fs::path CheckpointStage::save_to(sim::Scene& s, const fs::path& dir) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw CheckpointError("cannot create checkpoint folder '" + dir.string() + "': " + ec.message());
-    write_checkpoint(file, s, extras());
+    write_checkpoint(file, s, extras(s));
     return file;
   }
   // Decomposed or periodic runs: histories are keyed by global ids and
   // particles sorted by them, so any rank count can read the file back.
+  // A continuation from the file wraps periodic positions, migrates and
+  // rebuilds its lists at its first step; the run does the same here, at
+  // the checkpoint's step, so that both continue from the same state (a
+  // wrap rounds: x + L is not exact). The cuts in force after it are saved.
+  if (updated_step_ != s.clock.step) {  // once per step (a fallback folder saves the same state)
+    sim::NeighborStage::full_update(s, sort_);
+    updated_step_ = s.clock.step;
+  }
   std::string err;
   if (comm.parallel() && parallel_checkpoint_io()) {
     // Parallel HDF5: each rank writes its block of the global-id order.
@@ -71,7 +82,7 @@ fs::path CheckpointStage::save_to(sim::Scene& s, const fs::path& dir) {
     }
     if (comm.agree_error(err)) throw CheckpointError(err);
     auto block = sim::id_blocks(s);
-    write_checkpoint_parallel(file, s, block, extras());  // throws the same error on every rank
+    write_checkpoint_parallel(file, s, block, extras(s));  // throws the same error on every rank
     return file;
   }
   // Otherwise the whole state is gathered on rank 0, which writes it. Every
@@ -82,7 +93,7 @@ fs::path CheckpointStage::save_to(sim::Scene& s, const fs::path& dir) {
       std::error_code ec;
       fs::create_directories(dir, ec);
       if (ec) throw CheckpointError("cannot create checkpoint folder '" + dir.string() + "': " + ec.message());
-      write_checkpoint(file, whole, extras());
+      write_checkpoint(file, whole, extras(s));
     } catch (const std::exception& e) {
       err = e.what();
     }

@@ -36,6 +36,9 @@ class CheckpointStage final : public sim::Stage {
   /// The same into another folder, without pruning (the fallback when the
   /// output folder cannot take it).
   std::filesystem::path save_to(sim::Scene& s, const std::filesystem::path& dir);
+  /// Whether the full update before saving a decomposed or periodic run
+  /// sorts particles by cell (the case's sort_particles).
+  void set_sort(bool sort) { sort_ = sort; }
   /// Tells the stage which checkpoint the run continues from.
   void restarted_from(const std::filesystem::path& file, std::int64_t step);
 
@@ -44,7 +47,7 @@ class CheckpointStage final : public sim::Stage {
   std::int64_t every_steps() const { return every_; }
 
  private:
-  CheckpointExtras extras() const;
+  CheckpointExtras extras(const sim::Scene& s) const;
   std::filesystem::path dir_;
   std::int64_t every_;
   int keep_;
@@ -53,6 +56,8 @@ class CheckpointStage final : public sim::Stage {
   BlowUpCheck* blow_up_ = nullptr;
   std::filesystem::path last_;
   std::int64_t last_step_ = -1;
+  bool sort_ = true;
+  std::int64_t updated_step_ = -1;  // step of the last full update before a save
 };
 
 }  // namespace grains::io

@@ -170,11 +170,12 @@ void add_output_stages(Simulation& s, const RunOptions& opt) {
   }
   if (o.progress && !opt.quiet) s.pipeline.add(std::make_unique<Progress>(*opt.log, o.progress_interval));
   // Last of the output phase: a checkpoint holds the frames of its own step.
-  CheckpointExtras info{s.c.path, s.c.text, effective_case(s.c), {}, {}};
+  CheckpointExtras info{s.c.path, s.c.text, effective_case(s.c), {}, {}, {}};
   auto ck = std::make_unique<CheckpointStage>(opt.out_dir / "checkpoints",
                                               checkpoint_steps(s.c.checkpoint, s.scene.clock.dt), s.c.checkpoint.keep,
                                               std::move(info));
   ck->attach(vtk, blow_up);
+  ck->set_sort(s.c.scene.sort_particles);
   s.pipeline.add(std::move(ck));
 }
 
@@ -203,7 +204,7 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
     if (s.scene.exchange) {
       // Every rank read the whole state: keep this rank's part and rebuild;
       // the histories follow their pairs by global ids.
-      s.scene.exchange->distribute_initial(s.scene);
+      s.scene.exchange->distribute_initial(s.scene, &x.cuts);
       sim::NeighborStage::full_update(s.scene, s.c.scene.sort_particles);
     }
     if (x.case_effective != effective_case(s.c) && talk)

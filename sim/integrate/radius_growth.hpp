@@ -24,6 +24,7 @@
 // ellipsoids and clumps). Case-file keys: radius_growth.
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim/scene/stage.hpp"
@@ -52,34 +53,24 @@ struct RadiusGrowthConfig {
 
 class RadiusGrowth final : public Stage {
  public:
-  explicit RadiusGrowth(RadiusGrowthConfig c) : c_(c) {}
+  explicit RadiusGrowth(RadiusGrowthConfig c) : c_(std::move(c)) {}
   std::string name() const override { return "compress.grow_radii(servo on overlap per particle)"; }
   Phase phase() const override { return Phase::Drift; }
+  /// The servo's state between steps lives in the scene (Scene::growth), so
+  /// that checkpoints save it with the rest of the state.
   void run(Scene& s) override;
-  /// The overlap per particle o of the current state (pairs of the neighbour list).
+  /// The overlap per particle o of the current state (pairs of the neighbour
+  /// list). Summed in fixed point, so the value does not depend on the order
+  /// of the pairs (list order, rank decomposition): a restarted or parallel
+  /// run measures exactly the same o.
   static double overlap_per_particle(const Scene& s);
-  /// The last measured o and the growth rate in force (1/s).
-  double overlap() const { return overlap_; }
-  double growth_rate() const { return rate_; }
   const RadiusGrowthConfig& config() const { return c_; }
-  void set_target_overlap(double t) {
-    c_.target_overlap = t;
-    last_measure_ = -1;
-  }
-  /// A protocol may change the rate between phases (0: radii stay fixed).
-  void set_rate(double r) {
-    c_.rate = r;
-    rate_ = 0;
-    last_measure_ = -1;
-  }
   /// True once growth stopped at max_scale (the packing did not jam before).
   bool capped() const { return capped_; }
 
  private:
   RadiusGrowthConfig c_;
-  double overlap_ = 0, rate_ = 0;
-  bool started_ = false, capped_ = false;
-  std::int64_t last_measure_ = -1;
+  bool capped_ = false;  // mirror of Scene::growth.capped for callers without the scene
 };
 
 }  // namespace grains::sim

@@ -227,6 +227,7 @@ void NeighborList::restore(const ParticleStore& p, BuildState b) {
   x_build_ = std::move(b.x);
   build_id_ = std::move(b.row_id);
   stats_.builds = b.builds;
+  growth_ = b.growth;
   stats_.pairs = partner.size();
   compute_pair_constants(p);
   if (with_gather_) build_gather(p);

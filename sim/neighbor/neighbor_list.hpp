@@ -114,8 +114,9 @@ class NeighborList {
     std::vector<Vec3> x;
     std::vector<std::int64_t> row_id;
     long builds = 0;
+    double growth = 0;  // radius growth since the build (add_growth)
   };
-  BuildState build_state() const { return {build_time_, x_build_, build_id_, stats_.builds}; }
+  BuildState build_state() const { return {build_time_, x_build_, build_id_, stats_.builds, growth_}; }
   /// Restores a saved list: the public rows, history and near lists must be
   /// assigned already; pair_constants are recomputed from the particles.
   void restore(const ParticleStore& p, BuildState b);

@@ -97,6 +97,17 @@ Vec3 Decomposition::hi(int rank) const {
   return {cuts_[0][c[0] + 1], cuts_[1][c[1] + 1], cuts_[2][c[2] + 1]};
 }
 
+bool Decomposition::set_cuts(const std::array<std::vector<double>, 3>& cuts) {
+  for (int d = 0; d < 3; ++d) {
+    const auto& c = cuts[d];
+    if (c.size() != cuts_[d].size() || c.front() != cuts_[d].front() || c.back() != cuts_[d].back()) return false;
+    for (std::size_t k = 1; k < c.size(); ++k)
+      if (!(c[k] > c[k - 1])) return false;
+  }
+  cuts_ = cuts;
+  return true;
+}
+
 bool Decomposition::balance(const std::vector<Vec3>& x, std::size_t n, const Comm& comm, const double* weight) {
   constexpr int kBins = 2048;
   bool changed = false;

@@ -36,6 +36,11 @@ class Decomposition {
   Vec3 lo(int rank) const;
   Vec3 hi(int rank) const;
   const std::array<std::vector<double>, 3>& cuts() const { return cuts_; }
+  /// Takes cuts saved from a decomposition of the same grid (a checkpoint's,
+  /// sim::Exchange::distribute_initial). Returns false, changing nothing,
+  /// when their counts do not fit this grid or they are not increasing
+  /// from the domain's low to its high side.
+  bool set_cuts(const std::array<std::vector<double>, 3>& cuts);
   double min_width() const { return min_width_; }
 
   /// Moves the cuts to quantiles of the owned positions of all ranks

@@ -52,11 +52,12 @@ void Exchange::wrap(Scene& s) {
   }
 }
 
-void Exchange::distribute_initial(Scene& s) {
+void Exchange::distribute_initial(Scene& s, const std::array<std::vector<double>, 3>* saved_cuts) {
   auto& p = s.particles;
   auto& b = s.bodies;
   wrap(s);
   if (!comm_.parallel()) return;
+  keep_cuts_once_ = saved_cuts && dec_.set_cuts(*saved_cuts);
   // Every rank holds all particles: balance on them (a one-rank view, no
   // sums over ranks) when the uniform cuts would leave the load uneven.
   const int me = comm_.rank();
@@ -66,7 +67,7 @@ void Exchange::distribute_initial(Scene& s) {
     std::int64_t mx = 0;
     for (auto l : load) mx = std::max(mx, l);
     const double mean = static_cast<double>(p.n_owned()) / comm_.size();
-    if (mean > 0 && mx / mean > opt_.balance_threshold) {
+    if (!keep_cuts_once_ && mean > 0 && mx / mean > opt_.balance_threshold) {
       Comm one;
       if (dec_.balance(p.x, p.n_owned(), one)) ++stats_.rebalances;
     }
@@ -119,7 +120,9 @@ void Exchange::migrate(Scene& s, const std::vector<double>* work) {
     for (std::size_t i = 0; i < p.n_owned(); ++i) load += w[i];
   }
   stats_.imbalance = Decomposition::imbalance(load, comm_);
-  if (stats_.imbalance > opt_.balance_threshold && dec_.balance(p.x, p.n_owned(), comm_, w)) ++stats_.rebalances;
+  if (!keep_cuts_once_ && stats_.imbalance > opt_.balance_threshold && dec_.balance(p.x, p.n_owned(), comm_, w))
+    ++stats_.rebalances;
+  keep_cuts_once_ = false;
 
   const int me = comm_.rank();
   const auto P = static_cast<std::size_t>(comm_.size());

@@ -53,8 +53,11 @@ class Exchange {
   const Stats& stats() const { return stats_; }
 
   /// Keeps only the particles and bodies this rank owns (every rank built
-  /// the whole scene identically), after balancing the cuts on them.
-  void distribute_initial(Scene& s);
+  /// the whole scene identically), after balancing the cuts on them; or,
+  /// given the cuts a checkpoint saved for the same rank grid, with those
+  /// cuts, and the next migrate() then keeps them too (so that a continued
+  /// run owns, wraps and rebalances exactly as the uninterrupted one).
+  void distribute_initial(Scene& s, const std::array<std::vector<double>, 3>* saved_cuts = nullptr);
   /// Wraps periodic positions, rebalances when needed and migrates owned
   /// particles and bodies (with contact histories) to their owners. No
   /// ghosts may be present. `work`: estimated cost of each owned particle
@@ -85,6 +88,7 @@ class Exchange {
   Decomposition dec_;
   double cut_;
   ExchangeOptions opt_;
+  bool keep_cuts_once_ = false;  // the next migrate() does not rebalance (restored cuts)
   std::vector<Swap> swaps_;
   std::vector<char> sbuf_, rbuf_;
   Stats stats_;

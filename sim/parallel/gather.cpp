@@ -48,6 +48,7 @@ Scene gather_scene(Scene& s) {
   g.clock = s.clock;
   g.lost_particles = lost;
   g.deterministic = s.deterministic;
+  g.growth = s.growth;  // the same on every rank
   g.particles.configure(p.fields(), p.wall_history_size());
   g.neighbors.configure(H, s.neighbors.skin());
   if (!comm.root()) return g;

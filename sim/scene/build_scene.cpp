@@ -230,12 +230,16 @@ Scene build_scene(SceneConfig& c) {
 
 void setup_parallel(Scene& s, const SceneConfig& c, double rmax) {
   // Threads: ordered, race-free force sums whenever more than one thread
-  // runs (or when asked), so results never depend on the thread count.
+  // runs, so results never depend on the thread count. Ranks: ordered sums
+  // unless the case turns them off, so that results do not depend on the
+  // decomposition and a checkpoint continues bitwise on the same rank count
+  // (the continuation re-decomposes and rebuilds its lists). A serial run
+  // sums in list order unless asked (its checkpoints keep the lists).
   // One thread unless OMP_NUM_THREADS asks for more (OpenMP would take every core).
   if (!std::getenv("OMP_NUM_THREADS")) omp_set_num_threads(1);
-  s.deterministic = c.parallel.deterministic || omp_get_max_threads() > 1;
-  s.neighbors.set_gather(s.deterministic);
   const Comm& comm = Comm::world();
+  s.deterministic = c.parallel.deterministic.value_or(comm.parallel()) || omp_get_max_threads() > 1;
+  s.neighbors.set_gather(s.deterministic);
   if (!comm.parallel() && !s.domain.any_periodic()) return;
   // Ghost cut-off: the largest pair cut-off, plus how far a clump's ball may
   // lie from the centre of mass that decides its rank.

@@ -51,6 +51,19 @@ struct Clock {
   std::int64_t n_steps = 0;  // total steps of the run
 };
 
+/// The radius-growth servo between steps (integrate/radius_growth.hpp): what
+/// it measured last and the rate in force. Part of the state a checkpoint
+/// saves, so that a restarted compression continues bitwise.
+struct GrowthServo {
+  bool started = false;            // the first growth step has run
+  bool capped = false;             // growth stopped at max_scale
+  std::int64_t last_measure = -1;  // step of the last measurement (-1: measure now)
+  double overlap = 0;              // overlap per particle measured then
+  double rate = 0;                 // growth rate in force, 1/s
+  double phase_rate = 0;           // rate and target of the schedule phase in force
+  double phase_target = 0;
+};
+
 struct Scene {
   Domain domain;
   ParticleStore particles;
@@ -62,6 +75,7 @@ struct Scene {
   Vec3 gravity{0, 0, 0};
   Clock clock;
   std::int64_t lost_particles = 0;  // left the domain and were removed
+  GrowthServo growth;               // used by radius_growth only
   /// Ghost exchange, migration and balance: present under MPI with more than
   /// one rank or with periodic dimensions; null in a plain serial scene.
   std::shared_ptr<Exchange> exchange;

@@ -120,7 +120,11 @@ struct ArkodeConfig {
 
 /// Threads and MPI ranks (`parallel:` in the case file).
 struct ParallelConfig {
-  bool deterministic = false;        // ordered force sums even with one thread
+  /// Ordered force sums (results independent of thread and rank counts, and
+  /// continuations of checkpoints bitwise on the same rank count). Unset:
+  /// on under MPI with more than one rank, off in a serial run; always on
+  /// with more than one thread.
+  std::optional<bool> deterministic;
   std::array<int, 3> dims{0, 0, 0};  // rank grid; 0 = chosen from the domain shape
   double balance_threshold = 1.1;    // rebalance when max/mean estimated work per rank exceeds it
   std::string where;                 // case-file location, for messages

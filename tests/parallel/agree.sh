@@ -4,7 +4,8 @@
 #   agree.sh GRAINS COMPARE CASE WORKDIR deterministic [--set k=v ...]
 #       parallel.deterministic=true: every frame must agree bitwise.
 #   agree.sh GRAINS COMPARE CASE WORKDIR TOL [--set k=v ...]
-#       the default (unordered, fastest) force sums: positions within TOL m.
+#       unordered (list-order, fastest) force sums, parallel.deterministic=false
+#       (the default under MPI is ordered): positions within TOL m.
 set -euo pipefail
 grains=$1 compare=$2 case=$3 work=$4 mode=$5
 shift 5
@@ -12,7 +13,12 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_
 rm -rf "$work" && mkdir -p "$work"
 sets=("$@" -q)
 tol=0
-if [ "$mode" = deterministic ]; then sets+=(--set parallel.deterministic=true); else tol=$mode; fi
+if [ "$mode" = deterministic ]; then
+  sets+=(--set parallel.deterministic=true)
+else
+  sets+=(--set parallel.deterministic=false)
+  tol=$mode
+fi
 run() {  # name, launcher...
   local name=$1; shift
   local t0=$(date +%s.%N)

@@ -93,6 +93,13 @@ inline void expect_same_state(sim::Scene& a, sim::Scene& b) {
   ASSERT_EQ(a.walls.planes.size(), b.walls.planes.size());
   for (std::size_t w = 0; w < a.walls.planes.size(); ++w) EXPECT_EQ(a.walls.planes[w].point, b.walls.planes[w].point);
   EXPECT_EQ(a.lost_particles, b.lost_particles);
+  EXPECT_EQ(std::memcmp(&ba.growth, &bb.growth, sizeof(double)), 0) << "list growth since the build differs";
+  const auto& ga = a.growth;
+  const auto& gb = b.growth;
+  EXPECT_TRUE(ga.started == gb.started && ga.capped == gb.capped && ga.last_measure == gb.last_measure &&
+              bytes(std::vector<double>{ga.overlap, ga.rate, ga.phase_rate, ga.phase_target}) ==
+                  bytes(std::vector<double>{gb.overlap, gb.rate, gb.phase_rate, gb.phase_target}))
+      << "radius-growth servo differs";
 }
 
 /// Raises a signal (as a user's Ctrl-C would) after step `at`.

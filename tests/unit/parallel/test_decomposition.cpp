@@ -82,6 +82,28 @@ TEST(Decomposition, BalanceEqualisesABottomHeavyBed) {
   for (std::size_t k = 1; k < z.size(); ++k) EXPECT_GE(z[k] - z[k - 1], 0.2 - 1e-12);
 }
 
+// Cuts saved by a checkpoint are taken over by a grid of the same shape
+// (a continuation on the same rank count), and refused otherwise.
+TEST(Decomposition, TakesSavedCutsOfTheSameGridOnly) {
+  Decomposition d(box({1, 1, 8}), 4, 0.1);
+  auto cuts = d.cuts();
+  ASSERT_EQ(cuts[2].size(), 5u);
+  cuts[2] = {0, 0.5, 1.25, 3, 8};
+  EXPECT_TRUE(d.set_cuts(cuts));
+  EXPECT_EQ(d.cuts()[2], cuts[2]);
+  EXPECT_EQ(d.owner({0.5, 0.5, 1.0}), d.rank_at({0, 0, 1}));
+  auto fewer = cuts;
+  fewer[2] = {0, 2, 8};  // another rank count
+  EXPECT_FALSE(d.set_cuts(fewer));
+  auto other_box = cuts;
+  other_box[2].back() = 9;  // another domain
+  EXPECT_FALSE(d.set_cuts(other_box));
+  auto unordered = cuts;
+  unordered[2] = {0, 2, 1.5, 3, 8};
+  EXPECT_FALSE(d.set_cuts(unordered));
+  EXPECT_EQ(d.cuts()[2], cuts[2]);  // unchanged by the refusals
+}
+
 TEST(Decomposition, BalanceKeepsTheMinimumWidth) {
   Decomposition d(box({1, 1, 1}), 4, 0.2);
   std::vector<Vec3> x(1000, Vec3(0.5, 0.5, 0.01));  // everything at one height
