@@ -15,6 +15,7 @@ rm -rf "$work" && mkdir -p "$work"
 sets=("$@" --set parallel.deterministic=true --set checkpoint.every_steps=$every --set checkpoint.keep=10 -q)
 status=0
 fail() { echo "FAIL: $*"; status=1; }
+source "$(dirname "$0")/checkpoint_lib.sh"
 
 "$grains" run "$case" -o "$work/serial" "${sets[@]}"
 mpirun --oversubscribe -np 2 "$grains" run "$case" -o "$work/ranks2" "${sets[@]}"
@@ -60,15 +61,8 @@ for np in 1 2 4; do
 done
 # Every checkpoint the restarted 2-rank run wrote equals the uninterrupted
 # 2-rank run's of the same step (particles, histories, walls, clock).
-n=0
-for f in "$work"/restart2/checkpoints/checkpoint_*.h5; do
-  for obj in /particles /neighbor/row_start /neighbor/partner /neighbor/history /walls /clock /scene; do
-    h5diff -q "$f" "$work/ranks2/checkpoints/$(basename "$f")" $obj || fail "$(basename "$f"): $obj differs after the restart"
-  done
-  n=$((n + 1))
-done
-[ "$n" -ge 2 ] || fail "the 2-rank restart wrote $n checkpoints"
-echo "restart on 2 ranks: its $n checkpoints equal the uninterrupted 2-rank run's"
+same_checkpoints "$work/restart2" "$work/ranks2" 2 /particles /neighbor/row_start /neighbor/partner \
+  /neighbor/history /walls /clock /scene
 OMP_NUM_THREADS=2 "$grains" run "$case" --restart "$ck" -o "$work/restart_t2" "${sets[@]}"
 echo -n "restart with 2 threads vs uninterrupted serial: "
 "$compare" "$work/serial" "$work/restart_t2" --frames last || status=1
