@@ -113,12 +113,24 @@ static void BM_Type2(benchmark::State& st) {
   st.counters["width"] = plan.kernel().width;
 }
 
-// The FFT of the fine grid alone (what the NUFFT cannot go below).
+// The FFT of the fine grid alone as type 1 runs it (pruned, staged).
 static void BM_FineFFT(benchmark::State& st) {
   const int n = static_cast<int>(st.range(0));
   gc::Nufft3d plan({n, n, n}, 1e-6, options(st));
   for (auto _ : st) plan.execute_fine_fft(-1);
   st.counters["fine"] = plan.fine()[0];
+}
+
+// For comparison: one FFTW_ESTIMATE plan of the whole 3D fine grid.
+static void BM_FineFFTW3d(benchmark::State& st) {
+  const int n = static_cast<int>(st.range(0));
+  const int fine = gc::fine_grid_size(n, st.range(4) / 100.0, 8);
+  const std::array<int, 3> f = {fine, fine, fine};
+  gc::FftwBuffer grid(2 * static_cast<std::size_t>(fine) * fine * fine);
+  const gc::FftwPlan plan =
+      gc::plan_c2c_3d(f, grid.as_complex(), FFTW_FORWARD, static_cast<int>(st.range(3)), FFTW_ESTIMATE);
+  for (auto _ : st) plan.execute();
+  st.counters["fine"] = fine;
 }
 
 static void NufftArgs(benchmark::internal::Benchmark* b) {
@@ -138,6 +150,7 @@ static void FftArgs(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_Type1)->Apply(NufftArgs);
 BENCHMARK(BM_Type2)->Apply(NufftArgs);
 BENCHMARK(BM_FineFFT)->Apply(FftArgs);
+BENCHMARK(BM_FineFFTW3d)->Apply(FftArgs);
 
 // Solid fraction of a dense random (overlapping) bed: args balls, grid
 // nodes per side, -log10(tol), threads. Smoothing length = grid spacing.

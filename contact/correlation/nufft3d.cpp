@@ -42,10 +42,8 @@ Nufft3d::Nufft3d(std::array<int, 3> modes, double eps, const NufftOptions& opt)
       kernel_(pick_kernel(modes, eps, opt)),
       fine_(pick_fine(modes, kernel_)),
       spreader_(fine_, kernel_, opt.threads, opt.max_subproblem),
-      grid_(2 * static_cast<std::size_t>(fine_[0]) * fine_[1] * fine_[2]) {
-  const int threads = spreader_.threads();
-  plan_minus_ = plan_c2c_3d(fine_, grid_.as_complex(), FFTW_FORWARD, threads, opt.fftw_flags);
-  plan_plus_ = plan_c2c_3d(fine_, grid_.as_complex(), FFTW_BACKWARD, threads, opt.fftw_flags);
+      grid_(2 * static_cast<std::size_t>(fine_[0]) * fine_[1] * fine_[2]),
+      fft_(fine_, modes_, fine_[0], grid_.as_complex(), spreader_.threads(), opt.fftw_flags) {
   for (int d = 0; d < 3; ++d) {
     const int half = modes_[d] / 2;
     const int kmax = std::max(half, modes_[d] - 1 - half);
@@ -60,14 +58,14 @@ void Nufft3d::set_points(std::span<const double> x, std::span<const double> y,
   spreader_.set_points(x, y, z);
 }
 
-void Nufft3d::execute_fine_fft(int sign) { (sign < 0 ? plan_minus_ : plan_plus_).execute(); }
+void Nufft3d::execute_fine_fft(int sign) { fft_.forward_pruned(grid_.as_complex(), sign); }
 
 void Nufft3d::type1(std::span<const Complex> c, std::span<Complex> f, int sign) {
   if (c.size() != num_points()) throw std::invalid_argument("Nufft3d::type1: c has wrong size");
   if (f.size() != num_modes()) throw std::invalid_argument("Nufft3d::type1: f has wrong size");
   grid_.zero();
   spreader_.spread(reinterpret_cast<const double*>(c.data()), 2, grid_.data());
-  execute_fine_fft(sign);
+  fft_.forward_pruned(grid_.as_complex(), sign);
   const Complex* g = reinterpret_cast<const Complex*>(grid_.data());
   for_each_mode_row([&](std::size_t grid_row, std::size_t mode_row, double d23, const int* g1) {
     const Complex* row = g + grid_row;
@@ -87,7 +85,7 @@ void Nufft3d::type2(std::span<const Complex> f, std::span<Complex> c, int sign) 
     const Complex* in = f.data() + mode_row;
     for (int i1 = 0; i1 < modes_[0]; ++i1) row[g1[i1]] = in[i1] * (d23 * deconv_[0][i1]);
   });
-  execute_fine_fft(sign);
+  fft_.backward_pruned(grid_.as_complex(), sign);
   spreader_.interpolate(grid_.data(), reinterpret_cast<double*>(c.data()));
 }
 

@@ -13,8 +13,9 @@
 // Method: spread with the ES kernel onto a fine grid of n_d >= sigma N_d
 // nodes (next 2,3,5-smooth even size), FFT of the fine grid, then divide by
 // the kernel's Fourier transform (deconvolution) and truncate to the N modes;
-// type 2 runs the same steps backwards. FFTW plans for both signs are made
-// once in the constructor and reused by every call.
+// type 2 runs the same steps backwards. The fine-grid FFT skips the lines
+// whose results are not needed (PrunedFft3d); its FFTW plans for both signs
+// are made once in the constructor and reused by every call.
 #include <array>
 #include <complex>
 #include <cstddef>
@@ -23,6 +24,7 @@
 
 #include "contact/correlation/es_kernel.hpp"
 #include "contact/correlation/fftw_util.hpp"
+#include "contact/correlation/pruned_fft.hpp"
 #include "contact/correlation/spreader.hpp"
 
 namespace grains::correlation {
@@ -64,7 +66,7 @@ class Nufft3d {
   std::size_t num_points() const { return spreader_.num_points(); }
   const KernelSpec& kernel() const { return kernel_; }
 
-  // Steps timed separately by the benchmarks (the FFT of the fine grid alone).
+  // The fine-grid FFT of type 1 (pruned) alone, timed by the benchmarks.
   void execute_fine_fft(int sign);
 
  private:
@@ -96,7 +98,7 @@ class Nufft3d {
   std::array<int, 3> fine_;
   Spreader spreader_;
   FftwBuffer grid_;
-  FftwPlan plan_minus_, plan_plus_;
+  PrunedFft3d fft_;
   std::array<std::vector<double>, 3> deconv_;  // 1 / psi_hat(k), index i_d
 };
 

@@ -1,0 +1,135 @@
+#include "contact/correlation/pruned_fft.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <mutex>
+#include <stdexcept>
+
+namespace grains::correlation {
+
+namespace {
+
+// Fine-grid indices of the modes k = -floor(N/2) .. ceil(N/2) - 1.
+std::vector<int> needed(int modes, int n) {
+  std::vector<int> out;
+  for (int i = 0; i < modes; ++i) out.push_back(((i - modes / 2) % n + n) % n);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+constexpr int kBlock = 8;  // lines moved together by the blocked transposes
+
+// buf[c * len + r] = base[r * stride + cols[c]] for r < len, c < ncols.
+void gather(const std::complex<double>* base, std::size_t stride, int len, const std::vector<int>& cols,
+            std::complex<double>* buf) {
+  const int ncols = static_cast<int>(cols.size());
+  for (int r0 = 0; r0 < len; r0 += kBlock) {
+    const int r1 = std::min(len, r0 + kBlock);
+    for (int c = 0; c < ncols; ++c) {
+      const std::complex<double>* src = base + cols[c];
+      std::complex<double>* dst = buf + static_cast<std::size_t>(c) * len;
+      for (int r = r0; r < r1; ++r) dst[r] = src[r * stride];
+    }
+  }
+}
+
+// The inverse move: base[r * stride + cols[c]] = buf[c * len + r].
+void scatter(const std::complex<double>* buf, std::size_t stride, int len, const std::vector<int>& cols,
+             std::complex<double>* base) {
+  const int ncols = static_cast<int>(cols.size());
+  for (int r0 = 0; r0 < len; r0 += kBlock) {
+    const int r1 = std::min(len, r0 + kBlock);
+    for (int c = 0; c < ncols; ++c) {
+      std::complex<double>* dst = base + cols[c];
+      const std::complex<double>* src = buf + static_cast<std::size_t>(c) * len;
+      for (int r = r0; r < r1; ++r) dst[r * stride] = src[r];
+    }
+  }
+}
+
+// howmany contiguous lines of length len, dist apart.
+fftw_plan plan_lines(int len, int howmany, int dist, fftw_complex* data, int sign, unsigned flags) {
+  fftw_plan p = fftw_plan_many_dft(1, &len, howmany, data, nullptr, 1, dist, data, nullptr, 1, dist, sign, flags);
+  if (!p) throw std::runtime_error("FFTW could not create a plan");
+  return p;
+}
+
+}  // namespace
+
+PrunedFft3d::PrunedFft3d(std::array<int, 3> fine, std::array<int, 3> modes, int pitch, fftw_complex* grid,
+                         int threads, unsigned flags)
+    : n_(fine), modes_(modes), pitch_(pitch), threads_(std::max(1, threads)) {
+  if (pitch_ < n_[0]) throw std::invalid_argument("PrunedFft3d: row pitch shorter than a row");
+  for (int d = 0; d < 3; ++d)
+    if (modes_[d] < 1 || modes_[d] > n_[d]) throw std::invalid_argument("PrunedFft3d: need 1 <= N_d <= n_d");
+  xs_ = needed(modes_[0], n_[0]);
+  ys_ = needed(modes_[1], n_[1]);
+  const int lines = modes_[0];
+  const std::size_t buf_len = 2 * static_cast<std::size_t>(lines) * std::max(n_[1], n_[2]);
+  for (int t = 0; t < threads_; ++t) buf_.emplace_back(buf_len);
+  fftw_threads_init_once();
+  std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+  fftw_plan_with_nthreads(1);  // the stages are parallel over planes
+  for (int s = 0; s < 2; ++s) {
+    const int sign = s == 0 ? FFTW_FORWARD : FFTW_BACKWARD;
+    px_[s] = FftwPlan(plan_lines(n_[0], n_[1], pitch_, grid, sign, flags));
+    py_[s] = FftwPlan(plan_lines(n_[1], lines, n_[1], buf_[0].as_complex(), sign, flags));
+    pz_[s] = FftwPlan(plan_lines(n_[2], lines, n_[2], buf_[0].as_complex(), sign, flags));
+  }
+}
+
+void PrunedFft3d::stage_x(Complex* g, int sign) {
+  const FftwPlan& p = px_[sign < 0 ? 0 : 1];
+  const std::size_t plane = static_cast<std::size_t>(pitch_) * n_[1];
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (int z = 0; z < n_[2]; ++z) {
+    auto* a = reinterpret_cast<fftw_complex*>(g + z * plane);
+    p.execute_dft(a, a);
+  }
+}
+
+void PrunedFft3d::stage_y(Complex* g, int sign) {
+  const FftwPlan& p = py_[sign < 0 ? 0 : 1];
+  const std::size_t plane = static_cast<std::size_t>(pitch_) * n_[1];
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (int z = 0; z < n_[2]; ++z) {
+    FftwBuffer& b = buf_[omp_get_thread_num()];
+    auto* bc = reinterpret_cast<Complex*>(b.data());
+    gather(g + z * plane, pitch_, n_[1], xs_, bc);
+    p.execute_dft(b.as_complex(), b.as_complex());
+    scatter(bc, pitch_, n_[1], xs_, g + z * plane);
+  }
+}
+
+void PrunedFft3d::stage_z(Complex* g, int sign) {
+  const FftwPlan& p = pz_[sign < 0 ? 0 : 1];
+  const std::size_t plane = static_cast<std::size_t>(pitch_) * n_[1];
+  const int ny = static_cast<int>(ys_.size());
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (int j = 0; j < ny; ++j) {
+    FftwBuffer& b = buf_[omp_get_thread_num()];
+    auto* bc = reinterpret_cast<Complex*>(b.data());
+    Complex* base = g + static_cast<std::size_t>(ys_[j]) * pitch_;
+    gather(base, plane, n_[2], xs_, bc);
+    p.execute_dft(b.as_complex(), b.as_complex());
+    scatter(bc, plane, n_[2], xs_, base);
+  }
+}
+
+void PrunedFft3d::forward_pruned(fftw_complex* grid, int sign) {
+  Complex* g = reinterpret_cast<Complex*>(grid);
+  stage_x(g, sign);
+  stage_y(g, sign);
+  stage_z(g, sign);
+}
+
+void PrunedFft3d::backward_pruned(fftw_complex* grid, int sign) {
+  Complex* g = reinterpret_cast<Complex*>(grid);
+  stage_z(g, sign);
+  stage_y(g, sign);
+  stage_x(g, sign);
+}
+
+}  // namespace grains::correlation
