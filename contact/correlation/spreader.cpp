@@ -51,6 +51,12 @@ void interpolate_task(int w, const detail::InterpolateTask& t) {
 }
 
 constexpr std::array<int, 3> kBin = {16, 4, 4};
+// Bins are ordered tile by tile (4 x 4 x 4 bins = 64 x 16 x 16 cells), and a
+// spreading subproblem never leaves its tile: its subgrid stays small and
+// compact however sparse the points are (with plain row order, 10^4 sparse
+// points spanned whole x-rows of the grid, and clearing and adding back
+// their subgrids cost more than the spreading).
+constexpr int kTile = 4;
 
 // ceil(u - w/2) without a libm call (u is a fine-grid coordinate in [0, n)).
 inline int first_node(double u, int w) {
@@ -92,9 +98,14 @@ Spreader::Spreader(std::array<int, 3> fine, const KernelSpec& kernel, int thread
 void Spreader::set_points(std::span<const double> x, std::span<const double> y, std::span<const double> z) {
   const std::size_t m = x.size();
   if (y.size() != m || z.size() != m) throw std::invalid_argument("Spreader::set_points: x, y, z differ in length");
-  std::array<int, 3> nb;
-  for (int d = 0; d < 3; ++d) nb[d] = (fine_[d] + kBin[d] - 1) / kBin[d];
-  const std::size_t nbins = static_cast<std::size_t>(nb[0]) * nb[1] * nb[2];
+  std::array<int, 3> nb, nt;
+  for (int d = 0; d < 3; ++d) {
+    nb[d] = (fine_[d] + kBin[d] - 1) / kBin[d];
+    nt[d] = (nb[d] + kTile - 1) / kTile;
+  }
+  constexpr std::uint32_t tile_bins = kTile * kTile * kTile;
+  const std::size_t ntiles = static_cast<std::size_t>(nt[0]) * nt[1] * nt[2];
+  const std::size_t nbins = ntiles * tile_bins;  // keys of bins past the grid's edge stay empty
 
   const std::span<const double> in[3] = {x, y, z};
   const double inv2pi = 0.5 / std::numbers::pi;
@@ -103,17 +114,24 @@ void Spreader::set_points(std::span<const double> x, std::span<const double> y, 
   bin_.resize(m);
 #pragma omp parallel for num_threads(threads_) schedule(static)
   for (std::int64_t j = 0; j < static_cast<std::int64_t>(m); ++j) {
-    std::uint32_t b = 0;
+    std::uint32_t tile = 0, in_tile = 0;
     for (int d = 2; d >= 0; --d) {
       const double v = fold(in[d][j] * inv2pi, fine_[d]);
-      const int bd = std::min(nb[d] - 1, static_cast<int>(v * (1.0 / kBin[d])));
-      b = b * static_cast<std::uint32_t>(nb[d]) + static_cast<std::uint32_t>(bd);
+      const auto bd = static_cast<std::uint32_t>(std::min(nb[d] - 1, static_cast<int>(v * (1.0 / kBin[d]))));
+      tile = tile * static_cast<std::uint32_t>(nt[d]) + bd / kTile;
+      in_tile = in_tile * kTile + bd % kTile;
     }
-    bin_[j] = b;
+    bin_[j] = tile * tile_bins + in_tile;
   }
   std::vector<std::size_t> start(nbins + 1, 0);
   for (std::size_t j = 0; j < m; ++j) ++start[bin_[j] + 1];
   for (std::size_t b = 0; b < nbins; ++b) start[b + 1] += start[b];
+  // Subproblems: the points of each tile, in pieces of at most max_sub_.
+  sub_begin_.clear();
+  for (std::size_t t = 0; t < ntiles; ++t)
+    for (std::size_t s = start[t * tile_bins]; s < start[(t + 1) * tile_bins]; s += static_cast<std::size_t>(max_sub_))
+      sub_begin_.push_back(s);
+  sub_begin_.push_back(m);
   // One scattered write per point (coordinates, folded again, and index
   // together), then a sequential split: cheaper than scattering indices and
   // gathering three coordinate arrays through them.
@@ -133,9 +151,6 @@ void Spreader::set_points(std::span<const double> x, std::span<const double> y, 
     uz_[s] = q.u[2];
     order_[s] = q.index;
   }
-  sub_begin_.clear();
-  for (std::size_t s = 0; s < m; s += static_cast<std::size_t>(max_sub_)) sub_begin_.push_back(s);
-  sub_begin_.push_back(m);
 }
 
 void Spreader::spread(const double* c, int nc, double* grid) const {

@@ -4,12 +4,13 @@
 //
 // Points are given in radians on the 2pi-periodic torus (any real value is
 // folded), converted to fine-grid coordinates u in [0, n) and sorted into bins
-// of 16 x 4 x 4 fine cells (x fastest) so that consecutive points touch
-// neighbouring memory. Spreading splits the sorted points into subproblems of
-// at most `max_subproblem` points; each is spread into its own small subgrid
-// (bounding box + kernel width, no wrap-around inside) and then added into the
-// periodic fine grid, with atomic adds when more than one thread runs: no two
-// threads ever write the same location unprotected. Interpolation only reads
+// of 16 x 4 x 4 fine cells, ordered in tiles of 4 x 4 x 4 bins, so that
+// consecutive points touch neighbouring memory. Spreading splits each tile's
+// points into subproblems of at most `max_subproblem` points; each is spread
+// into its own small subgrid (bounding box + kernel width, no wrap-around
+// inside) and then added into the periodic fine grid, with atomic adds when
+// more than one thread runs: no two threads ever write the same location
+// unprotected. Interpolation only reads
 // the grid and is parallel over points.
 //
 // Values are real (NC = 1) or complex interleaved (NC = 2).
