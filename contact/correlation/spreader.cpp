@@ -133,24 +133,12 @@ void Spreader::set_points(std::span<const double> x, std::span<const double> y, 
       sub_begin_.push_back(s);
   sub_begin_.push_back(m);
   // One scattered write per point (coordinates, folded again, and index
-  // together), then a sequential split: cheaper than scattering indices and
-  // gathering three coordinate arrays through them.
-  packed_.resize(m);
+  // together; the kernels read them in this form): cheaper than scattering
+  // indices and gathering three coordinate arrays through them.
+  points_.resize(m);
   for (std::size_t j = 0; j < m; ++j)
-    packed_[start[bin_[j]]++] = {{fold(x[j] * inv2pi, fine_[0]), fold(y[j] * inv2pi, fine_[1]), fold(z[j] * inv2pi, fine_[2])},
+    points_[start[bin_[j]]++] = {{fold(x[j] * inv2pi, fine_[0]), fold(y[j] * inv2pi, fine_[1]), fold(z[j] * inv2pi, fine_[2])},
                                  static_cast<std::int64_t>(j)};
-  order_.resize(m);
-  ux_.resize(m);
-  uy_.resize(m);
-  uz_.resize(m);
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (std::int64_t s = 0; s < static_cast<std::int64_t>(m); ++s) {
-    const Packed& q = packed_[static_cast<std::size_t>(s)];
-    ux_[s] = q.u[0];
-    uy_[s] = q.u[1];
-    uz_[s] = q.u[2];
-    order_[s] = q.index;
-  }
 }
 
 void Spreader::spread(const double* c, int nc, double* grid) const {
@@ -164,11 +152,11 @@ void Spreader::spread(const double* c, int nc, double* grid) const {
   // Strengths in sorted order first: the random-access reads then overlap in
   // one simple loop instead of stalling the spreading arithmetic.
   std::vector<double>& cs = strengths_;
-  cs.resize(static_cast<std::size_t>(nc) * order_.size());
-  const std::int64_t m = static_cast<std::int64_t>(order_.size());
+  cs.resize(static_cast<std::size_t>(nc) * points_.size());
+  const std::int64_t m = static_cast<std::int64_t>(points_.size());
 #pragma omp parallel for num_threads(threads_) schedule(static)
   for (std::int64_t q = 0; q < m; ++q)
-    for (int k = 0; k < nc; ++k) cs[nc * q + k] = c[nc * order_[q] + k];
+    for (int k = 0; k < nc; ++k) cs[nc * q + k] = c[nc * points_[q].index + k];
 
   const int W = w, NC = nc;
 #pragma omp parallel num_threads(threads_)
@@ -179,7 +167,8 @@ void Spreader::spread(const double* c, int nc, double* grid) const {
       const std::size_t b = sub_begin_[p], e = sub_begin_[p + 1];
       int lo[3] = {INT_MAX, INT_MAX, INT_MAX}, hi[3] = {INT_MIN, INT_MIN, INT_MIN};
       for (std::size_t s = b; s < e; ++s) {
-        const int l[3] = {first_node(ux_[s], W), first_node(uy_[s], W), first_node(uz_[s], W)};
+        const double* u = points_[s].u;
+        const int l[3] = {first_node(u[0], W), first_node(u[1], W), first_node(u[2], W)};
         for (int d = 0; d < 3; ++d) {
           lo[d] = std::min(lo[d], l[d]);
           hi[d] = std::max(hi[d], l[d]);
@@ -187,7 +176,7 @@ void Spreader::spread(const double* c, int nc, double* grid) const {
       }
       const int s0 = hi[0] - lo[0] + W, s1 = hi[1] - lo[1] + W, s2 = hi[2] - lo[2] + W;
       sub.assign(static_cast<std::size_t>(s0) * s1 * s2 * NC, 0.0);
-      detail::SpreadTask task{&poly_, ux_.data(), uy_.data(), uz_.data(), cs.data(), b, e, {lo[0], lo[1], lo[2]},
+      detail::SpreadTask task{&poly_, points_.data(), cs.data(), b, e, {lo[0], lo[1], lo[2]},
                               s0,     s1,         sub.data()};
       spread_task(W, NC, task);
       // Add the subgrid into the periodic fine grid, each row in at most a
@@ -223,7 +212,7 @@ void Spreader::spread(const double* c, int nc, double* grid) const {
 }
 
 void Spreader::interpolate(const double* grid, double* c) const {
-  const std::int64_t m = static_cast<std::int64_t>(order_.size());
+  const std::int64_t m = static_cast<std::int64_t>(points_.size());
   if (m == 0) return;
   const int n0 = fine_[0], n1 = fine_[1], n2 = fine_[2];
   const int w = poly_.spec.width;
@@ -232,10 +221,7 @@ void Spreader::interpolate(const double* grid, double* c) const {
 #pragma omp parallel for num_threads(threads_) schedule(static)
   for (std::int64_t q = 0; q < chunks; ++q) {
     const detail::InterpolateTask task{&poly_,
-                                       ux_.data(),
-                                       uy_.data(),
-                                       uz_.data(),
-                                       order_.data(),
+                                       points_.data(),
                                        grid,
                                        n0,
                                        n1,

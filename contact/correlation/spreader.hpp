@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "contact/correlation/es_kernel.hpp"
+#include "contact/correlation/spreader_kernels.hpp"
 
 namespace grains::correlation {
 
@@ -40,28 +41,19 @@ class Spreader {
   // c[j] = sum over the kernel footprint of point j of psi * grid (complex).
   void interpolate(const double* grid, double* c) const;
 
-  std::size_t num_points() const { return order_.size(); }
+  std::size_t num_points() const { return points_.size(); }
   const std::array<int, 3>& fine() const { return fine_; }
   const KernelPolynomial& kernel() const { return poly_; }
   int threads() const { return threads_; }
-
-  // Exposed for tests: sorted fine-grid coordinates and the permutation.
-  const std::vector<std::int64_t>& order() const { return order_; }
 
  private:
   std::array<int, 3> fine_;
   KernelPolynomial poly_;
   int threads_;
   int max_sub_;
-  std::vector<double> ux_, uy_, uz_;         // sorted fine-grid coordinates
-  std::vector<std::int64_t> order_;          // sorted position -> caller index
   std::vector<std::size_t> sub_begin_;       // subproblem boundaries (size + 1)
   std::vector<std::uint32_t> bin_;           // set_points scratch (kept: no page faults on reuse)
-  struct Packed {
-    double u[3];
-    std::int64_t index;
-  };
-  std::vector<Packed> packed_;               // set_points scratch: sorted coordinates + index
+  std::vector<detail::SortedPoint> points_;  // sorted fine-grid coordinates + caller index
   mutable std::vector<double> strengths_;    // spread scratch: strengths in sorted order
 };
 

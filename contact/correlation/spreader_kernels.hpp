@@ -13,24 +13,29 @@
 
 namespace grains::correlation::detail {
 
+// A point in sorted order: fine-grid coordinates and the caller's index.
+struct SortedPoint {
+  double u[3];
+  std::int64_t index;
+};
+
 // Spread points [begin, end) (sorted order) into a zeroed subgrid of
 // s0 x s1 x s2 cells (nc doubles each) whose first node is lo.
 struct SpreadTask {
   const KernelPolynomial* kernel;
-  const double *ux, *uy, *uz;  // sorted fine-grid coordinates
-  const double* c;             // strengths in sorted order, nc per point
+  const SortedPoint* pts;
+  const double* c;  // strengths in sorted order, nc per point
   std::size_t begin, end;
   int lo[3];
   int s0, s1;
   double* sub;
 };
 
-// c_out[2 order[s]] (+1) = interpolation of the complex periodic fine grid
+// c_out[2 pts[s].index] (+1) = interpolation of the complex periodic fine grid
 // (n0 x n1 x n2) at the sorted points [begin, end).
 struct InterpolateTask {
   const KernelPolynomial* kernel;
-  const double *ux, *uy, *uz;
-  const std::int64_t* order;
+  const SortedPoint* pts;
   const double* grid;
   int n0, n1, n2;
   std::size_t begin, end;
