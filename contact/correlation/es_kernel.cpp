@@ -69,7 +69,7 @@ std::vector<double> kernel_fourier_series(const KernelSpec& spec, int n, int kma
 KernelPolynomial fit_kernel_polynomial(const KernelSpec& spec) {
   KernelPolynomial kp;
   kp.spec = spec;
-  kp.degree = std::min(kMaxKernelDegree, spec.width + 3);
+  kp.degree = std::min(kMaxKernelDegree, spec.width + 1);
   const int d = kp.degree;
   const int m = d + 1;
   const int w = spec.width;

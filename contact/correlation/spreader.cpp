@@ -66,15 +66,19 @@ inline int first_node(double u, int w) {
 }
 
 // t - floor(t) times n, folded into [0, n): the fine-grid coordinate of a
-// point at t periods. The cast replaces the libm floor for |t| < 4.5e15
-// (and keeps NaN away from the integer conversion).
+// point at t periods. floor is taken as a truncation of t + 2^31 (positive,
+// so truncation is floor; no libm call and no data-dependent branch: with
+// `fl -= (fl > t)` the compiler branched on the sign of t, mispredicted half
+// the time for points in [-pi, pi)). Rounding t + 2^31 can only move fl up
+// by one for t just below an integer; the result is then a hair below 0 and
+// the rarely taken fix-ups below bring it into [0, n).
 inline double fold(double t, int n) {
+  constexpr double kShift = 2147483648.0;  // 2^31
   double fl;
-  if (std::abs(t) < 4.5e15) {
-    fl = static_cast<double>(static_cast<std::int64_t>(t));
-    fl -= static_cast<double>(fl > t);  // no branch: the sign of t is random
+  if (std::abs(t) < kShift) {
+    fl = static_cast<double>(static_cast<std::int64_t>(t + kShift) - static_cast<std::int64_t>(kShift));
   } else {
-    fl = std::floor(t);
+    fl = std::floor(t);  // also keeps NaN away from the integer conversion
   }
   double v = (t - fl) * n;
   if (v >= n) v -= n;
