@@ -37,7 +37,9 @@ struct NufftOptions {
   double upsampling = 2.0;
   int threads = 0;                      // 0: omp_get_max_threads()
   unsigned fftw_flags = FFTW_ESTIMATE;  // FFTW_MEASURE pays off for repeated calls
-  int max_subproblem = 10000;           // points per spreading subproblem
+  // Points per spreading subproblem. Results do not depend on `threads`
+  // (bitwise); they depend on this to rounding (it fixes the summation order).
+  int max_subproblem = 10000;
   std::size_t expected_points = 0;      // only used by upsampling = 0
 };
 

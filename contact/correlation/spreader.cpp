@@ -131,18 +131,36 @@ void Spreader::set_points(std::span<const double> x, std::span<const double> y, 
   for (std::size_t j = 0; j < m; ++j) ++start[bin_[j] + 1];
   for (std::size_t b = 0; b < nbins; ++b) start[b + 1] += start[b];
   // Subproblems: the points of each tile, in pieces of at most max_sub_.
+  // Slabs: runs of whole tile layers (tiles are ordered z-slowest), each at
+  // least a kernel width thick, an even number of them or a single one (see
+  // spread()); slab_sub_[k] is the first subproblem of slab k.
+  const int layer_cells = kTile * kBin[2];
+  const int layers_per_slab = (poly_.spec.width + layer_cells - 1) / layer_cells;
+  int slabs = fine_[2] / (layers_per_slab * layer_cells);  // the last slab takes the rest
+  if (slabs % 2 == 1) --slabs;
+  if (slabs < 2) slabs = 1;
+  const std::size_t tiles_per_layer = static_cast<std::size_t>(nt[0]) * nt[1];
   sub_begin_.clear();
-  for (std::size_t t = 0; t < ntiles; ++t)
+  slab_sub_.assign(static_cast<std::size_t>(slabs) + 1, 0);
+  for (std::size_t t = 0; t < ntiles; ++t) {
+    const std::size_t layer = t / tiles_per_layer;
+    if (layer % layers_per_slab == 0 && t % tiles_per_layer == 0) {
+      const std::size_t k = layer / layers_per_slab;
+      if (k > 0 && k < static_cast<std::size_t>(slabs)) slab_sub_[k] = sub_begin_.size();
+    }
     for (std::size_t s = start[t * tile_bins]; s < start[(t + 1) * tile_bins]; s += static_cast<std::size_t>(max_sub_))
       sub_begin_.push_back(s);
+  }
+  slab_sub_[slabs] = sub_begin_.size();
   sub_begin_.push_back(m);
   // One scattered write per point (coordinates, folded again, and index
   // together; the kernels read them in this form): cheaper than scattering
   // indices and gathering three coordinate arrays through them.
   points_.resize(m);
   for (std::size_t j = 0; j < m; ++j)
-    points_[start[bin_[j]]++] = {{fold(x[j] * inv2pi, fine_[0]), fold(y[j] * inv2pi, fine_[1]), fold(z[j] * inv2pi, fine_[2])},
-                                 static_cast<std::int64_t>(j)};
+    points_[start[bin_[j]]++] = {
+        {fold(x[j] * inv2pi, fine_[0]), fold(y[j] * inv2pi, fine_[1]), fold(z[j] * inv2pi, fine_[2])},
+        static_cast<std::int64_t>(j)};
 }
 
 void Spreader::spread(const double* c, int nc, double* grid) const {
@@ -150,7 +168,6 @@ void Spreader::spread(const double* c, int nc, double* grid) const {
   const std::int64_t nsub = static_cast<std::int64_t>(sub_begin_.size()) - 1;
   if (nsub <= 0) return;
   const int w = poly_.spec.width;
-  const bool atomic = threads_ > 1 && nsub > 1;
   const int n0 = fine_[0], n1 = fine_[1], n2 = fine_[2];
 
   // Strengths in sorted order first: the random-access reads then overlap in
@@ -162,55 +179,58 @@ void Spreader::spread(const double* c, int nc, double* grid) const {
   for (std::int64_t q = 0; q < m; ++q)
     for (int k = 0; k < nc; ++k) cs[nc * q + k] = c[nc * points_[q].index + k];
 
+  // A slab's subgrids reach at most half a kernel width beyond it; slabs of
+  // the same parity are separated by a slab at least a kernel width thick
+  // (and their number is even, so the first and last slab, neighbours across
+  // the period, differ in parity): the even slabs are spread in parallel,
+  // then the odd ones, each slab by one thread, with plain adds. The order
+  // in which a grid cell receives its contributions (parity, slab,
+  // subproblem, point) does not depend on the thread count: the result is
+  // bitwise the same with any number of threads.
   const int W = w, NC = nc;
-#pragma omp parallel num_threads(threads_)
-  {
-    std::vector<double> sub;
+  const std::int64_t slabs = static_cast<std::int64_t>(slab_sub_.size()) - 1;
+  for (int parity = 0; parity < (slabs >= 2 ? 2 : 1); ++parity) {
+#pragma omp parallel num_threads(slabs >= 2 ? threads_ : 1)
+    {
+      std::vector<double> sub;
 #pragma omp for schedule(dynamic, 1)
-    for (std::int64_t p = 0; p < nsub; ++p) {
-      const std::size_t b = sub_begin_[p], e = sub_begin_[p + 1];
-      int lo[3] = {INT_MAX, INT_MAX, INT_MAX}, hi[3] = {INT_MIN, INT_MIN, INT_MIN};
-      for (std::size_t s = b; s < e; ++s) {
-        const double* u = points_[s].u;
-        const int l[3] = {first_node(u[0], W), first_node(u[1], W), first_node(u[2], W)};
-        for (int d = 0; d < 3; ++d) {
-          lo[d] = std::min(lo[d], l[d]);
-          hi[d] = std::max(hi[d], l[d]);
-        }
-      }
-      const int s0 = hi[0] - lo[0] + W, s1 = hi[1] - lo[1] + W, s2 = hi[2] - lo[2] + W;
-      sub.assign(static_cast<std::size_t>(s0) * s1 * s2 * NC, 0.0);
-      detail::SpreadTask task{&poly_, points_.data(), cs.data(), b, e, {lo[0], lo[1], lo[2]},
-                              s0,     s1,         sub.data()};
-      spread_task(W, NC, task);
-      // Add the subgrid into the periodic fine grid, each row in at most a
-      // few contiguous pieces (it wraps around at most once per period).
-      const int x0 = ((lo[0] % n0) + n0) % n0;
-      for (int zz = 0; zz < s2; ++zz) {
-        const int gz = ((lo[2] + zz) % n2 + n2) % n2;
-        for (int yy = 0; yy < s1; ++yy) {
-          const int gy = ((lo[1] + yy) % n1 + n1) % n1;
-          double* grow = grid + NC * ((static_cast<std::size_t>(gz) * n1 + gy) * n0);
-          const double* srow = sub.data() + NC * ((static_cast<std::size_t>(zz) * s1 + yy) * s0);
-          for (int i = 0, gx = x0; i < s0;) {
-            const int len = std::min(s0 - i, n0 - gx);
-            double* __restrict dst = grow + NC * gx;
-            const double* src = srow + NC * i;
-            if (atomic) {
-              for (int q = 0; q < NC * len; ++q)
-                if (src[q] != 0.0) {
-#pragma omp atomic
-                  dst[q] += src[q];
-                }
-            } else {
-#pragma omp simd
-              for (int q = 0; q < NC * len; ++q) dst[q] += src[q];
+      for (std::int64_t k = parity; k < slabs; k += 2)
+        for (std::size_t p = slab_sub_[k]; p < slab_sub_[k + 1]; ++p) {
+          const std::size_t b = sub_begin_[p], e = sub_begin_[p + 1];
+          int lo[3] = {INT_MAX, INT_MAX, INT_MAX}, hi[3] = {INT_MIN, INT_MIN, INT_MIN};
+          for (std::size_t s = b; s < e; ++s) {
+            const double* u = points_[s].u;
+            const int l[3] = {first_node(u[0], W), first_node(u[1], W), first_node(u[2], W)};
+            for (int d = 0; d < 3; ++d) {
+              lo[d] = std::min(lo[d], l[d]);
+              hi[d] = std::max(hi[d], l[d]);
             }
-            i += len;
-            gx = 0;
+          }
+          const int s0 = hi[0] - lo[0] + W, s1 = hi[1] - lo[1] + W, s2 = hi[2] - lo[2] + W;
+          sub.assign(static_cast<std::size_t>(s0) * s1 * s2 * NC, 0.0);
+          detail::SpreadTask task{&poly_, points_.data(), cs.data(), b, e, {lo[0], lo[1], lo[2]}, s0, s1, sub.data()};
+          spread_task(W, NC, task);
+          // Add the subgrid into the periodic fine grid, each row in at most a
+          // few contiguous pieces (it wraps around at most once per period).
+          const int x0 = ((lo[0] % n0) + n0) % n0;
+          for (int zz = 0; zz < s2; ++zz) {
+            const int gz = ((lo[2] + zz) % n2 + n2) % n2;
+            for (int yy = 0; yy < s1; ++yy) {
+              const int gy = ((lo[1] + yy) % n1 + n1) % n1;
+              double* grow = grid + NC * ((static_cast<std::size_t>(gz) * n1 + gy) * n0);
+              const double* srow = sub.data() + NC * ((static_cast<std::size_t>(zz) * s1 + yy) * s0);
+              for (int i = 0, gx = x0; i < s0;) {
+                const int len = std::min(s0 - i, n0 - gx);
+                double* __restrict dst = grow + NC * gx;
+                const double* src = srow + NC * i;
+#pragma omp simd
+                for (int q = 0; q < NC * len; ++q) dst[q] += src[q];
+                i += len;
+                gx = 0;
+              }
+            }
           }
         }
-      }
     }
   }
 }

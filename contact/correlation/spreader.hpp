@@ -8,9 +8,11 @@
 // consecutive points touch neighbouring memory. Spreading splits each tile's
 // points into subproblems of at most `max_subproblem` points; each is spread
 // into its own small subgrid (bounding box + kernel width, no wrap-around
-// inside) and then added into the periodic fine grid, with atomic adds when
-// more than one thread runs: no two threads ever write the same location
-// unprotected. Interpolation only reads
+// inside) and then added into the periodic fine grid. Threads take whole
+// z-slabs of tiles (at least a kernel width thick): first the even slabs,
+// then the odd ones, so no two threads ever write the same cell and no
+// atomic add is needed; the summation order, and so the result, does not
+// depend on the thread count. Interpolation only reads
 // the grid and is parallel over points.
 //
 // Values are real (NC = 1) or complex interleaved (NC = 2).
@@ -52,6 +54,7 @@ class Spreader {
   int threads_;
   int max_sub_;
   std::vector<std::size_t> sub_begin_;       // subproblem boundaries (size + 1)
+  std::vector<std::size_t> slab_sub_;        // first subproblem of each z-slab (size + 1)
   std::vector<std::uint32_t> bin_;           // set_points scratch (kept: no page faults on reuse)
   std::vector<detail::SortedPoint> points_;  // sorted fine-grid coordinates + caller index
   mutable std::vector<double> strengths_;    // spread scratch: strengths in sorted order
