@@ -33,22 +33,28 @@ inline void world_omega(const Rot& R, double L0, double L1, double L2, double j0
   om[2] = R.m20 * c0 + R.m21 * c1 + R.m22 * c2;
 }
 
+// v += half_dt F/m and L += half_dt T for particle i.
+inline void half_kick(ParticleStore& p, std::ptrdiff_t i, double half_dt) {
+  const double hm = half_dt * p.inv_mass[i];
+  double* v = p.v[i].data();
+  const double* f = p.f[i].data();
+  v[0] += hm * f[0];
+  v[1] += hm * f[1];
+  v[2] += hm * f[2];
+  double* L = p.angular_momentum[i].data();
+  const double* t = p.torque[i].data();
+  L[0] += half_dt * t[0];
+  L[1] += half_dt * t[1];
+  L[2] += half_dt * t[2];
+}
+
 }  // namespace
 
 void rigid_half_kick(ParticleStore& p, double half_dt) {
   const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
   parallel_for(use_threads(n, 1024), n, [&](std::ptrdiff_t i) {
-    const double hm = half_dt * p.inv_mass[i];
-    double* v = p.v[i].data();
-    const double* f = p.f[i].data();
-    v[0] += hm * f[0];
-    v[1] += hm * f[1];
-    v[2] += hm * f[2];
-    double* L = p.angular_momentum[i].data();
-    const double* t = p.torque[i].data();
-    L[0] += half_dt * t[0];
-    L[1] += half_dt * t[1];
-    L[2] += half_dt * t[2];
+    half_kick(p, i, half_dt);
+    const double* L = p.angular_momentum[i].data();
     const double* I = p.inertia[i].data();
     const Quat& q = p.orientation[i];
     world_omega(rot(q.w(), q.x(), q.y(), q.z()), L[0], L[1], L[2], 1.0 / I[0], 1.0 / I[1], 1.0 / I[2],
@@ -60,18 +66,9 @@ void rigid_kick_drift(ParticleStore& p, std::size_t n, double dt) {
   const double half_dt = 0.5 * dt;
   const auto count = static_cast<std::ptrdiff_t>(n);
   parallel_for(use_threads(count, 1024), count, [&](std::ptrdiff_t i) {
-    // Half kick.
-    const double hm = half_dt * p.inv_mass[i];
-    double* v = p.v[i].data();
-    const double* f = p.f[i].data();
-    v[0] += hm * f[0];
-    v[1] += hm * f[1];
-    v[2] += hm * f[2];
-    double* Lp = p.angular_momentum[i].data();
-    const double* t = p.torque[i].data();
-    Lp[0] += half_dt * t[0];
-    Lp[1] += half_dt * t[1];
-    Lp[2] += half_dt * t[2];
+    half_kick(p, i, half_dt);
+    const double* v = p.v[i].data();
+    const double* Lp = p.angular_momentum[i].data();
     const double L0 = Lp[0], L1 = Lp[1], L2 = Lp[2];
     const double* I = p.inertia[i].data();
     const double j0 = 1.0 / I[0], j1 = 1.0 / I[1], j2 = 1.0 / I[2];

@@ -16,6 +16,7 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # suppressions also need whole stacks: with ASan's fast unwinding a stack
 # stops at the first frame without a frame pointer (inside Open MPI), so
 # tests run under mpirun need ASAN_OPTIONS=...:fast_unwind_on_malloc=0
-# (set per test for the MPI tests is left to do; it slows every malloc).
+# (CMake appends it per test for the MPI tests, ENVIRONMENT_MODIFICATION in
+# the sanitize build only: it slows every malloc).
 export OMPI_MCA_mca_base_component_disable_dlclose=1
 unset _grains_san_dir
