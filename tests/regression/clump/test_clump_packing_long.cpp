@@ -12,8 +12,8 @@
 // CubeResolutionSweep: phi of poured frictional cubes against the resolution
 // of their sphere decomposition (issue 4: "packing fraction of poured clumps
 // of a fixed shape converges as the decomposition resolution increases").
-// cases/pour_clumps/cube.off at grid 4, 6, 8, 12 (mu = 0.25: n3 = 8, 40, 120,
-// 160 balls per cube), 250 cubes of bounding radius 0.8 mm in a 6 mm x 6 mm
+// cases/pour_clumps/cube.off at grid 4, 6, 8, 12, 16 (mu = 0.25: n3 = 8, 40,
+// 120, 160, 249 balls per cube; a grid-16 pour takes ~25 min of CPU), 250 cubes of bounding radius 0.8 mm in a 6 mm x 6 mm
 // box periodic in x and y (no side walls), E = 1 MPa, e = 0.5, friction 0.5,
 // three placement seeds per grid; bulk phi of the union of balls 2 mm above
 // the floor and below the free surface (clump_pour.hpp, pour_periodic).
@@ -79,7 +79,7 @@ TEST(ClumpRegressionLong, DimerAspectRatioSweep) {
 TEST(ClumpRegressionLong, CubeResolutionSweep) {
   const packing::Reference effect = packing::reference("clump_resolution_effect");
   const packing::Reference conv = packing::reference("clump_resolution_convergence");
-  const std::vector<int> grids = {4, 6, 8, 12};
+  const std::vector<int> grids = {4, 6, 8, 12, 16};
   const std::vector<int> seeds = {1, 2, 3};
   // One pour of the sweep, recorded as clump_resolution_grid<G>_seed<S>.json
   // when GRAINS_RESULTS_DIR is set. With GRAINS_CUBE_SWEEP_REUSE=1 a pour
