@@ -3,6 +3,10 @@
 
 #include <cmath>
 
+#include <algorithm>
+#include <numbers>
+
+#include "contact/ellipsoid/point_ellipsoid.hpp"
 #include "contact/ellipsoid/secular_equation.hpp"
 #include "contact/ellipsoid/surface_curvature.hpp"
 
@@ -144,6 +148,243 @@ ContactGeometry ellipsoid_cylinder_contact(const Ellipsoid& body, const Cylinder
     *touching = g.overlap > 0.0 && zc >= wall.z_min && zc <= wall.z_max;
   }
   return g;
+}
+
+
+namespace {
+
+// A rim circle q(t) = c + rho (cos t e1 + sin t e2) and the body's quadratic
+// F(t) = (q - x)^T Q^-1 (q - x) along it,
+//   F = k0 + k1 cos t + k2 sin t + k3 cos^2 t + k4 sin t cos t + k5 sin^2 t.
+struct RimCircle {
+  Vector3d c, e1, e2;
+  double rho = 0;
+  double k[6] = {};
+
+  Vector3d at(double t) const { return c + rho * (std::cos(t) * e1 + std::sin(t) * e2); }
+  Vector3d tangent(double t) const { return rho * (-std::sin(t) * e1 + std::cos(t) * e2); }
+  double f(double t) const {
+    const double co = std::cos(t), si = std::sin(t);
+    return k[0] + k[1] * co + k[2] * si + k[3] * co * co + k[4] * si * co + k[5] * si * si;
+  }
+  double df(double t) const {
+    const double co = std::cos(t), si = std::sin(t);
+    return -k[1] * si + k[2] * co + 2.0 * (k[5] - k[3]) * si * co + k[4] * (co * co - si * si);
+  }
+  double d2f(double t) const {
+    const double co = std::cos(t), si = std::sin(t);
+    return -k[1] * co - k[2] * si + 2.0 * (k[5] - k[3]) * (co * co - si * si) - 4.0 * k[4] * si * co;
+  }
+};
+
+struct RimMax {
+  double theta = 0;
+  Vector3d q;
+  ClosestPoint cp;
+  double depth() const { return -cp.signed_distance; }
+};
+
+// Root of a continuous g on [a, b] with g(a) <= 0 <= g(b) (Illinois).
+template <class G>
+double illinois(G&& g, double a, double b, double ga, double gb) {
+  int side = 0;
+  for (int it = 0; it < 100 && b - a > 1e-14 * (1.0 + std::abs(a)); ++it) {
+    const double m = (ga != gb) ? a - ga * (b - a) / (gb - ga) : 0.5 * (a + b);
+    const double t = (m > a && m < b) ? m : 0.5 * (a + b);
+    const double gt = g(t);
+    if (gt == 0.0) return t;
+    if (gt < 0.0) {
+      a = t, ga = gt;
+      if (side == -1) gb *= 0.5;
+      side = -1;
+    } else {
+      b = t, gb = gt;
+      if (side == 1) ga *= 0.5;
+      side = 1;
+    }
+  }
+  return 0.5 * (a + b);
+}
+
+// Local maxima of the depth along the rim with positive depth (at most two).
+int rim_maxima(const Ellipsoid& body, const RimCircle& rim, RimMax out[2]) {
+  constexpr int N = 32;
+  constexpr double h = 2.0 * std::numbers::pi / N;
+  double fs[N];
+  bool all_inside = true;
+  for (int j = 0; j < N; ++j) {
+    fs[j] = rim.f(j * h);
+    all_inside = all_inside && fs[j] < 1.0;
+  }
+  // g(t) = n_s . q'(t) = -D'(t): negative where the depth still rises.
+  auto closest = [&](double t) { return closest_point_on_ellipsoid(rim.at(t), body); };
+  auto g = [&](double t) { return closest(t).normal.dot(rim.tangent(t)); };
+  auto finish = [&](double t) {
+    RimMax r;
+    r.theta = t;
+    r.q = rim.at(t);
+    r.cp = closest(t);
+    return r;
+  };
+  if (all_inside) {
+    // The whole circle lies in the body: its deepest sample, refined.
+    int best = 0;
+    double dbest = -1e300;
+    for (int j = 0; j < N; ++j) {
+      const double d = -closest(j * h).signed_distance;
+      if (d > dbest) dbest = d, best = j;
+    }
+    const double a = (best - 1) * h, b = (best + 1) * h;
+    const double ga = g(a), gb = g(b);
+    out[0] = finish(ga <= 0.0 && gb >= 0.0 ? illinois(g, a, b, ga, gb) : best * h);
+    return out[0].depth() > 0.0 ? 1 : 0;
+  }
+  int n = 0;
+  double arcs[2][2];
+  for (int j = 0; j < N && n < 2; ++j) {
+    const int jl = (j + N - 1) % N, jr = (j + 1) % N;
+    if (!(fs[j] <= fs[jl] && fs[j] < fs[jr])) continue;
+    // The minimum of F near sample j (safeguarded Newton on F').
+    double lo = (j - 1) * h, hi = (j + 1) * h, t = j * h;
+    for (int it = 0; it < 50; ++it) {
+      const double d1 = rim.df(t), d2 = rim.d2f(t);
+      if (d1 < 0.0) lo = t; else hi = t;
+      double tn = d2 > 0.0 ? t - d1 / d2 : 0.5 * (lo + hi);
+      if (!(tn > lo && tn < hi)) tn = 0.5 * (lo + hi);
+      if (std::abs(tn - t) < 1e-15 * (1.0 + std::abs(t))) { t = tn; break; }
+      t = tn;
+    }
+    if (rim.f(t) >= 1.0) continue;
+    // The arc where F < 1 around t: walk out to a sample with F >= 1, bisect.
+    auto end = [&](int dir) {
+      int k = j + dir;
+      while (fs[((k % N) + N) % N] < 1.0) k += dir;
+      double in = (k - dir) * h, outp = k * h;
+      if (k - dir == j) in = t;
+      for (int it = 0; it < 64; ++it) {
+        const double mid = 0.5 * (in + outp);
+        if (rim.f(mid) < 1.0) in = mid; else outp = mid;
+      }
+      return in;
+    };
+    const double a = end(-1), b = end(+1);
+    bool seen = false;
+    for (int m = 0; m < n; ++m)
+      seen = seen || std::abs(std::remainder(arcs[m][0] - a, 2.0 * std::numbers::pi)) < 1e-9;
+    if (seen) continue;
+    arcs[n][0] = a, arcs[n][1] = b;
+    const double ga = g(a), gb = g(b);
+    const double root = ga <= 0.0 && gb >= 0.0 ? illinois(g, a, b, ga, gb) : t;
+    out[n] = finish(root);
+    if (out[n].depth() > 0.0) ++n;
+  }
+  return n;
+}
+
+ContactGeometry rim_contact(const SymMat3& q, const RimMax& r) {
+  ContactGeometry g;
+  g.normal = -r.cp.normal;
+  g.overlap = r.depth();
+  g.point = r.q;
+  Vector3d t1, t2;
+  tangent_basis(r.cp.normal, t1, t2);
+  g.radius = hertz_radius(curvature_tensor(q, r.cp.normal, t1, t2));
+  return g;
+}
+
+}  // namespace
+
+AnnulusContacts ellipsoid_annulus_contacts(const Ellipsoid& body, const Annulus& wall) {
+  AnnulusContacts out;
+  const Vector3d& n = wall.normal;
+  const Vector3d rel = body.centre - wall.centre;
+  const double hn = n.dot(rel);
+  const Vector3d m = hn >= 0.0 ? Vector3d(n) : Vector3d(-n);
+  bool reaches = false;
+  const ContactGeometry face = ellipsoid_plane_contact(body, PlaneWall{wall.centre, m}, &reaches);
+  if (!reaches) return out;  // the body does not reach the plane of the sheet
+  // Foot on the plane of the deepest point.
+  const Vector3d q0 = face.point + 0.5 * face.overlap * m;
+  const double rho0 = (q0 - wall.centre).norm();
+  const bool on_face = rho0 >= wall.r_in && rho0 <= wall.r_out;
+
+  struct Candidate {
+    ContactGeometry g;
+    bool face;
+  };
+  Candidate cand[5];
+  int nc = 0;
+  if (on_face) cand[nc++] = {face, true};
+
+  const SymMat3 q = body.form();
+  const Mat3 rot = body.orientation.toRotationMatrix();
+  const Vector3d w = body.semi_axes.cwiseProduct(body.semi_axes).cwiseInverse();
+  auto wdot = [&](const Vector3d& a, const Vector3d& b) {
+    const Vector3d ab = rot.transpose() * a, bb = rot.transpose() * b;
+    return (ab.cwiseProduct(w)).dot(bb);
+  };
+  Vector3d e1, e2;
+  tangent_basis(n, e1, e2);
+  const double bound = body.semi_axes.maxCoeff();
+  const double rho_x = (rel - hn * n).norm();
+  for (const double rho : {wall.r_in, wall.r_out}) {
+    if (!(rho > 0.0) || !std::isfinite(rho)) continue;
+    // Off the faces, only the rim on q0's side: the body's section reaches
+    // the other one across a face, which that rim's contact already holds.
+    if (!on_face && (rho0 < wall.r_in) != (rho == wall.r_in)) continue;
+    // Quick reject: the circle stays farther from the centre than the body reaches.
+    if (hn * hn + (rho_x - rho) * (rho_x - rho) >= bound * bound) continue;
+    RimCircle rim;
+    rim.c = wall.centre;
+    rim.e1 = e1;
+    rim.e2 = e2;
+    rim.rho = rho;
+    const Vector3d d = wall.centre - body.centre;
+    rim.k[0] = wdot(d, d);
+    rim.k[1] = 2.0 * rho * wdot(d, e1);
+    rim.k[2] = 2.0 * rho * wdot(d, e2);
+    rim.k[3] = rho * rho * wdot(e1, e1);
+    rim.k[4] = 2.0 * rho * rho * wdot(e1, e2);
+    rim.k[5] = rho * rho * wdot(e2, e2);
+    RimMax maxima[2];
+    const int nm = rim_maxima(body, rim, maxima);
+    for (int k = 0; k < nm; ++k) {
+      if (on_face) {
+        // Counted only if the part of the section it holds is cut off from
+        // q0 by the hole: the segment q0 -> q passes through the open hole.
+        const Vector3d a = q0 - wall.centre, b = maxima[k].q - wall.centre;
+        const Vector3d ab = b - a;
+        const double len2 = ab.squaredNorm();
+        const double s = len2 > 0.0 ? std::clamp(-a.dot(ab) / len2, 0.0, 1.0) : 0.0;
+        const double dmin = (a + s * ab).norm();
+        if (!(dmin < wall.r_in * (1.0 - 1e-9))) continue;
+      }
+      cand[nc++] = {rim_contact(q, maxima[k]), false};
+    }
+  }
+  // The deepest face contact first, then the deepest rims; at most two.
+  auto before = [](const Candidate& a, const Candidate& b) {
+    return a.face != b.face ? a.face : a.g.overlap > b.g.overlap;
+  };
+  for (int k = 1; k < nc; ++k)  // insertion sort of at most five
+    for (int j = k; j > 0 && before(cand[j], cand[j - 1]); --j) std::swap(cand[j], cand[j - 1]);
+  out.count = std::min(nc, 2);
+  int longest = 0;
+  body.semi_axes.maxCoeff(&longest);
+  const Vector3d v_long = rot.col(longest);
+  for (int k = 0; k < out.count; ++k) {
+    out.g[k] = cand[k].g;
+    out.face[k] = cand[k].face;
+  }
+  if (out.count > 0) {
+    if (out.face[0]) {
+      out.slot[0] = 0, out.slot[1] = 1;
+    } else {
+      out.slot[0] = (out.g[0].point - body.centre).dot(v_long) >= 0.0 ? 0 : 1;
+      out.slot[1] = 1 - out.slot[0];
+    }
+  }
+  return out;
 }
 
 }  // namespace grains::contact

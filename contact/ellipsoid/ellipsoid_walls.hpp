@@ -31,10 +31,37 @@
 // negative when the axis pierces the body, so the overlap grows continuously
 // and the push stays along -n), normal = -n (from the post into the body),
 // and the wall's curvature +1/R_c around the circumference enters R*.
+//
+// Finite plane (an annulus of zero thickness, contact/plane.hpp: a disc, or a
+// silo floor with its orifice), touched on both faces and on its rims. The
+// annulus is not convex, so an ellipsoid can touch it at two places (a long
+// grain lying across the orifice rests on both sides of the hole's rim); up to
+// two contacts are returned, each with its own history slot:
+//  - Face: the plane contact above on the side of the centre. It holds when
+//    the foot q0 (on the plane) of the body's deepest point lies on the
+//    annulus, as for a sphere whose centre lies over a face.
+//  - Rim: a point q of a rim circle inside the body. Along the circle the
+//    depth D(theta) = -(signed distance of q from the surface) is maximised:
+//    the arcs of the circle inside the body are where the body's quadratic
+//    F(q) = (q - c)^T Q^-1 (q - c) (a trigonometric polynomial of degree 2 in
+//    theta: at most two arcs) is below 1; on each, the maximum is the root of
+//    D' = -n_s . q'(theta), n_s the outward surface normal at the closest
+//    point (point_ellipsoid.hpp). overlap = D, normal = -n_s (from the rim
+//    into the body, the sphere-annulus normal for a sphere), point = q,
+//    R* from the body's curvature there (the edge's own curvature neglected,
+//    as for spheres).
+//  Without a face contact every rim maximum counts (at most two kept, the
+//  deepest); with one, a rim maximum counts only when the segment from q0 to
+//  it crosses the hole (it belongs to another part of the body's section
+//  with the sheet; otherwise the face contact already holds that part).
+// Slot of a contact: by the side of the body's longest axis it lies on
+// (0: (point - centre) . v_long >= 0), the second contact taking the other
+// slot, so a contact that moves from a face to a rim keeps its history.
 #include <Eigen/Core>
 
 #include "contact/contact_geometry.hpp"
 #include "contact/ellipsoid/ellipsoid.hpp"
+#include "contact/plane.hpp"
 
 namespace grains::contact {
 
@@ -58,5 +85,13 @@ ContactGeometry ellipsoid_plane_contact(const Ellipsoid& body, const PlaneWall& 
                                         bool* touching = nullptr);
 ContactGeometry ellipsoid_cylinder_contact(const Ellipsoid& body, const CylinderWall& wall,
                                            bool* touching = nullptr);
+
+struct AnnulusContacts {
+  int count = 0;            // touching contacts, 0..2
+  ContactGeometry g[2];     // g[k] for k < count
+  int slot[2] = {0, 1};     // history slot of g[k]: 0 or 1, distinct
+  bool face[2] = {false, false};  // g[k] is the face contact (else a rim)
+};
+AnnulusContacts ellipsoid_annulus_contacts(const Ellipsoid& body, const Annulus& wall);
 
 }  // namespace grains::contact

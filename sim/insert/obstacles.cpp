@@ -93,6 +93,10 @@ bool Obstacles::clear_of_walls(const GrainParts& g) const {
     e.semi_axes = g.ell_axes;
     e.orientation = g.ell_orientation;
     for (const auto& w : walls_.planes) {
+      if (w.finite()) {
+        if (contact::ellipsoid_annulus_contacts(e, w.annulus()).count > 0) return false;
+        continue;
+      }
       bool touching = false;
       contact::ellipsoid_plane_contact(e, contact::PlaneWall{w.point, w.normal}, &touching);
       if (touching) return false;

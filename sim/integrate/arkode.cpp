@@ -387,7 +387,8 @@ void ErkDriver::pack() {
       for (const auto i : near) wall_entry_.push_back(i * WH + static_cast<std::size_t>(slot) * 2 * H_);
     };
     for (std::size_t w = 0; w < s.walls.planes.size() && w < nl.plane_near.size(); ++w)
-      add(nl.plane_near[w], s.walls.planes[w].history_slot);
+      for (int k = 0; k < s.walls.planes[w].history_slots; ++k)
+        add(nl.plane_near[w], s.walls.planes[w].history_slot + k);
     for (std::size_t w = 0; w < s.walls.cylinders.size() && w < nl.cylinder_near.size(); ++w)
       add(nl.cylinder_near[w], s.walls.cylinders[w].history_slot);
   }

@@ -170,7 +170,11 @@ Scene build_scene(SceneConfig& c) {
 
   // Walls get history slots when the law keeps history.
   int slot = 0;
-  for (auto& w : s.walls.planes) w.history_slot = slot++;
+  for (auto& w : s.walls.planes) {
+    w.history_slot = slot;
+    w.history_slots = need.ellipsoids && w.finite() ? 2 : 1;
+    slot += w.history_slots;
+  }
   for (auto& w : s.walls.cylinders) w.history_slot = slot++;
   s.particles.configure(need.fields, slot * need.history_size);
 
@@ -203,11 +207,6 @@ Scene build_scene(SceneConfig& c) {
   if (c.growth.enabled && (need.ellipsoids || need.clumps))
     throw SetupError(c.growth_where + ": radius_growth grows spheres only; this scene has " +
                      (need.ellipsoids ? "ellipsoids" : "clumps"));
-  if (need.ellipsoids)
-    for (const auto& w : s.walls.planes)
-      if (w.finite())
-        throw SetupError("wall '" + w.name + "': ellipsoids against a finite plane (hole_radius or radius) are not "
-                         "supported; use an infinite plane or spheres");
 
   if (need.clumps) place_clump_balls(s.particles, s.bodies, true);
   double rmax = 0;

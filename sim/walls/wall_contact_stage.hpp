@@ -45,7 +45,7 @@ class PlaneWallStage final : public Stage {
     const int WH = p.wall_history_size();
     for (std::size_t w = 0; w < s.walls.planes.size(); ++w) {
       const PlaneWall& wall = s.walls.planes[w];
-      if (wall.finite()) {  // a disc or annulus (spheres only, checked at set-up)
+      if (wall.finite()) {  // a disc or annulus
         run_finite(s, w);
         continue;
       }
@@ -89,6 +89,12 @@ class PlaneWallStage final : public Stage {
     for (std::ptrdiff_t m = 0; m < nn; ++m) {
       const std::size_t i = near[static_cast<std::size_t>(m)];
       double* hist = H > 0 ? p.wall_history.data() + static_cast<std::size_t>(i) * WH + wall.history_slot * H : nullptr;
+      if constexpr (Shapes) {
+        if (p.shape[i] == kEllipsoid) {
+          ellipsoid_annulus(s, i, wall, a, hist);
+          continue;
+        }
+      }
       contact::ContactGeometry g;
       if (!contact::sphere_annulus(p.x[i], p.radius[i], a, g)) {
         if constexpr (H > 0) std::fill_n(hist, H, 0.0);
@@ -97,6 +103,35 @@ class PlaneWallStage final : public Stage {
       WallContact<Law, Law::needs_rotation || Shapes>::apply(p, i, g, wall.velocity, s.pairs(p.material[i], wall.material),
                                                             s.clock.dt, hist);
     }
+  }
+
+  // Up to two contacts (contact/ellipsoid/ellipsoid_walls.hpp), each in its
+  // own slot (the wall has two: hist and hist + H). A lone rim contact
+  // continues the slot that holds history, if only one does: it is the
+  // contact of the previous step, moved.
+  static void ellipsoid_annulus(Scene& s, std::size_t i, const PlaneWall& wall, const contact::Annulus& a,
+                                double* hist) {
+    ParticleStore& p = s.particles;
+    constexpr int H = Law::history_size;
+    const contact::AnnulusContacts c =
+        contact::ellipsoid_annulus_contacts({p.x[i], p.semi_axes[i], p.orientation[i]}, a);
+    int slot[2] = {c.slot[0], c.slot[1]};
+    if constexpr (H > 0) {
+      if (c.count == 1 && !c.face[0]) {
+        auto held = [&](int k) { return std::any_of(hist + k * H, hist + (k + 1) * H, [](double v) { return v != 0.0; }); };
+        const bool h0 = held(0), h1 = held(1);
+        if (h0 != h1) slot[0] = h0 ? 0 : 1;
+      }
+    }
+    bool used[2] = {false, false};
+    for (int k = 0; k < c.count; ++k) {
+      used[slot[k]] = true;
+      WallContact<Law, true>::apply(p, i, c.g[k], wall.velocity, s.pairs(p.material[i], wall.material), s.clock.dt,
+                                    H > 0 ? hist + slot[k] * H : nullptr);
+    }
+    if constexpr (H > 0)
+      for (int k = 0; k < 2; ++k)
+        if (!used[k]) std::fill_n(hist + k * H, H, 0.0);
   }
 };
 

@@ -14,7 +14,7 @@ std::vector<EffectDoc> wall_docs() {
                "as particle pairs with the wall as an infinitely heavy body. With hole_radius and/or radius the "
                "plane is finite: a zero-thickness annulus (a disc, or a plane with a circular hole such as a silo "
                "bottom with its orifice) about `point`, touched on both faces and on its rims; particles pass "
-               "through the hole (spheres and clumps only).",
+               "through the hole. An ellipsoid can touch it at two places at once (e.g. lying across the hole).",
                {key("type", K::String, "wall type").req().one_of({"plane", "cylinder"}),
                 key("name", K::String, "label used in output"),
                 key("point", K::Vec3, "a point on the plane; the centre of the hole and of the disc").req().si("m"),

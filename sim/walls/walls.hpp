@@ -22,6 +22,9 @@ struct PlaneWall {
   Vec3 velocity{0, 0, 0};
   int material = 0;
   int history_slot = 0;
+  /// History slots from history_slot on: 2 for a finite plane in a scene with
+  /// ellipsoids (a grain can touch an annulus at two places), else 1.
+  int history_slots = 1;
   /// A hole of this radius about `point` (0: none) and an outer radius
   /// (infinite: none). With either, the wall is a zero-thickness annulus
   /// touched on both faces and on its rims (contact/plane.hpp).

@@ -21,7 +21,7 @@
 // `clump_resolution_convergence`; recorded in docs/decomposition.md.
 //
 // BunnyPourAgainstResolution: the same periodic pour with 400 of
-// cases/pour_clumps/bunny.off at grid 8 and 12 (one seed): poured phi and
+// cases/pour_clumps/bunny.off at grid 8, 12 and 16 (one seed): poured phi and
 // DEM cost per step, recorded in bench/RESULTS.md (a measurement: it checks
 // only that every pour keeps its grains and comes to rest).
 #include <gtest/gtest.h>
@@ -195,7 +195,7 @@ TEST(ClumpRegressionLong, CubeResolutionSweep) {
 }
 
 TEST(ClumpRegressionLong, BunnyPourAgainstResolution) {
-  const std::vector<int> grids = {8, 12};
+  const std::vector<int> grids = {8, 12, 16};
   std::vector<double> n3, phi, ms_step, wall, dt;
   for (int grid : grids) {
     PeriodicPourConfig c;

@@ -1,11 +1,16 @@
-// Ellipsoid against a plane, inside a cylinder and outside one (a post):
-// closed forms for spheres and aligned spheroids, and brute-force surface sampling for general poses.
+// Ellipsoid against a plane, inside a cylinder and outside one (a post), and
+// against a finite plane (an annulus: a disc or a floor with an orifice):
+// closed forms for spheres and aligned spheroids, the sphere-annulus contact
+// for round bodies, and brute-force sampling for general poses.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
 #include "contact/ellipsoid/ellipsoid_walls.hpp"
+#include "contact/ellipsoid/point_ellipsoid.hpp"
+#include "contact/ellipsoid/surface_curvature.hpp"
+#include "contact/plane.hpp"
 #include "tests/unit/ellipsoid/random_ellipsoids.hpp"
 
 namespace grains::contact {
@@ -229,6 +234,244 @@ TEST(EllipsoidPost, ClosestPointAgainstSampling) {
     EXPECT_LE(g.overlap, w.radius - near + 1e-3 * b.semi_axes.maxCoeff());
   }
   EXPECT_GE(pierced, 10);
+}
+
+// ---- Finite planes (annuli) ------------------------------------------------
+
+Annulus random_annulus(Rng& rng) {
+  Annulus a;
+  a.normal = rng.unit_vector();
+  a.centre = Vector3d(rng.normal(), rng.normal(), rng.normal());
+  const int kind = static_cast<int>(rng.uniform() * 3);  // hole only, disc, ring
+  if (kind != 1) a.r_in = rng.uniform(0.5, 3);
+  if (kind != 0) a.r_out = a.r_in + rng.uniform(1, 4);
+  return a;
+}
+
+TEST(EllipsoidAnnulus, RoundBodyIsTheSphereAnnulusContact) {
+  // A round ellipsoid in any orientation touches an annulus exactly where a
+  // sphere does: same overlap and normal; the rim point is the same point,
+  // the face point lies half the overlap behind the sphere's foot point.
+  Rng rng(71);
+  int faces = 0, rims = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const Annulus a = random_annulus(rng);
+    Ellipsoid b;
+    const double r = rng.uniform(0.2, 2);
+    b.semi_axes = Vector3d::Constant(r);
+    b.orientation = rng.rotation();
+    // Centres near the sheet, over the faces, the hole and the rims.
+    Vector3d e1, e2;
+    tangent_basis(a.normal, e1, e2);
+    const double phi = rng.uniform(0, 2 * std::numbers::pi);
+    const double rho_max = std::isfinite(a.r_out) ? a.r_out + r : a.r_in + 3;
+    const double rho = rng.uniform(0, rho_max);
+    b.centre = a.centre + rho * (std::cos(phi) * e1 + std::sin(phi) * e2) + rng.uniform(-1.2, 1.2) * r * a.normal;
+    ContactGeometry gs;
+    const bool sphere = sphere_annulus(b.centre, r, a, gs);
+    const AnnulusContacts c = ellipsoid_annulus_contacts(b, a);
+    ASSERT_EQ(c.count, sphere ? 1 : 0) << "pose " << k << " r " << r << " centre " << b.centre.transpose() << " annulus "
+                                        << a.centre.transpose() << " n " << a.normal.transpose() << " " << a.r_in << " "
+                                        << a.r_out << " ov " << c.g[0].overlap << " " << c.g[1].overlap << " face "
+                                        << c.face[0] << c.face[1] << " pts " << c.g[0].point.transpose() << " / "
+                                        << c.g[1].point.transpose();
+    if (!sphere) continue;
+    const ContactGeometry& g = c.g[0];
+    EXPECT_NEAR(g.overlap, gs.overlap, 1e-12 * r) << "pose " << k;
+    EXPECT_LT((g.normal - gs.normal).norm(), 1e-9) << "pose " << k;
+    EXPECT_NEAR(g.radius, r, 1e-12 * r);
+    const Vector3d p = c.face[0] ? Vector3d(g.point + 0.5 * g.overlap * g.normal) : g.point;
+    EXPECT_LT((p - gs.point).norm(), 1e-9 * r) << "pose " << k;
+    (c.face[0] ? faces : rims)++;
+  }
+  EXPECT_GT(faces, 200);
+  EXPECT_GT(rims, 200);
+}
+
+TEST(EllipsoidAnnulus, OverAFaceItIsThePlaneContactOnEitherSide) {
+  Annulus a;
+  a.r_in = 1;
+  a.r_out = 20;
+  Ellipsoid b;
+  b.semi_axes = Vector3d(2, 0.5, 0.3);
+  b.orientation = Quat(Eigen::AngleAxisd(0.3, Vector3d(1, 1, 0).normalized()));
+  for (const double side : {1.0, -1.0}) {
+    b.centre = Vector3d(8, 3, side * 0.4);
+    const AnnulusContacts c = ellipsoid_annulus_contacts(b, a);
+    ASSERT_EQ(c.count, 1);
+    EXPECT_TRUE(c.face[0]);
+    EXPECT_EQ(c.slot[0], 0);
+    bool touching = false;
+    const ContactGeometry p = ellipsoid_plane_contact(b, PlaneWall{a.centre, side * a.normal}, &touching);
+    ASSERT_TRUE(touching);
+    EXPECT_EQ(c.g[0].overlap, p.overlap);
+    EXPECT_EQ(c.g[0].normal, p.normal);
+    EXPECT_EQ(c.g[0].point, p.point);
+    EXPECT_EQ(c.g[0].radius, p.radius);
+  }
+  // Far from the sheet: nothing.
+  b.centre = Vector3d(8, 3, 2.5);
+  EXPECT_EQ(ellipsoid_annulus_contacts(b, a).count, 0);
+}
+
+TEST(EllipsoidAnnulus, NeedleAcrossTheOrificeRestsOnBothSidesOfTheRim) {
+  // A prolate spheroid (3, 0.3, 0.3) lying across a hole of radius 1, 0.03
+  // below the sheet: the rim cuts it around (+-1, 0, 0), two
+  // contacts, mirror images, in distinct slots, pushing up and inwards.
+  Annulus a;
+  a.r_in = 1;
+  Ellipsoid b;
+  b.semi_axes = Vector3d(3, 0.3, 0.3);
+  b.centre = Vector3d(0, 0, 0.27);
+  const AnnulusContacts c = ellipsoid_annulus_contacts(b, a);
+  ASSERT_EQ(c.count, 2);
+  EXPECT_FALSE(c.face[0]);
+  EXPECT_FALSE(c.face[1]);
+  EXPECT_NE(c.slot[0], c.slot[1]);
+  EXPECT_NEAR(c.g[0].overlap, c.g[1].overlap, 1e-13);
+  EXPECT_NEAR(c.g[0].point.x(), -c.g[1].point.x(), 1e-12);
+  EXPECT_NEAR(std::abs(c.g[0].point.x()), 1.0, 1e-12);
+  EXPECT_NEAR(c.g[0].point.y(), 0.0, 1e-12);
+  EXPECT_LT((c.g[0].normal + c.g[1].normal - Vector3d(0, 0, 2 * c.g[0].normal.z())).norm(), 1e-12);
+  EXPECT_GT(c.g[0].normal.z(), 0.99);
+  // The depth at the rim: the point (1, 0, 0) inside the body, to rounding.
+  const ClosestPoint cp = closest_point_on_ellipsoid(Vector3d(1, 0, 0), b);
+  EXPECT_NEAR(c.g[0].overlap, -cp.signed_distance, 1e-14);
+  // The slot follows the side of the long axis the contact lies on.
+  const int right = c.g[0].point.x() > 0 ? 0 : 1;
+  EXPECT_EQ(c.slot[right], 0);
+  // Turned to stand upright in the hole, the same needle falls through it.
+  b.orientation = Quat(Eigen::AngleAxisd(std::numbers::pi / 2, Vector3d(0, 1, 0)));
+  b.centre = Vector3d(0.2, 0.1, 0);
+  EXPECT_EQ(ellipsoid_annulus_contacts(b, a).count, 0);
+}
+
+// Depth of point q inside the body (negative outside).
+double depth(const Vector3d& q, const Ellipsoid& b) { return -closest_point_on_ellipsoid(q, b).signed_distance; }
+
+TEST(EllipsoidAnnulus, RimDepthAgainstSampling) {
+  // Bodies straddling a hole's rim with no face contact: the deepest contact
+  // is the deepest of 20,000 points sampled along the rim (to their spacing),
+  // and every contact is a local maximum of the depth along it.
+  Rng rng(72);
+  int tested = 0, pairs = 0;
+  for (int k = 0; k < 400; ++k) {
+    Annulus a;
+    a.normal = rng.unit_vector();
+    a.centre = Vector3d(rng.normal(), rng.normal(), rng.normal());
+    a.r_in = rng.uniform(0.5, 3);
+    Ellipsoid b;
+    b.semi_axes = Vector3d(rng.log_uniform(0.05, 3), rng.log_uniform(0.05, 3), rng.log_uniform(0.05, 3));
+    b.orientation = rng.rotation();
+    Vector3d e1, e2;
+    tangent_basis(a.normal, e1, e2);
+    const double phi = rng.uniform(0, 2 * std::numbers::pi);
+    b.centre = a.centre + rng.uniform(0, a.r_in + 0.3) * (std::cos(phi) * e1 + std::sin(phi) * e2) +
+               rng.uniform(-0.5, 0.5) * b.semi_axes.minCoeff() * a.normal;
+    const AnnulusContacts c = ellipsoid_annulus_contacts(b, a);
+    if (c.count == 0 || c.face[0]) continue;
+    ++tested;
+    pairs += c.count == 2;
+    double best = -INFINITY;
+    constexpr int S = 20000;
+    for (int j = 0; j < S; ++j) {
+      const double t = 2 * std::numbers::pi * j / S;
+      best = std::max(best, depth(a.centre + a.r_in * (std::cos(t) * e1 + std::sin(t) * e2), b));
+    }
+    const double scale = b.semi_axes.maxCoeff();
+    EXPECT_GE(c.g[0].overlap, best - 1e-12 * scale) << "pose " << k;
+    // Sampling resolution: a deep maximum can sit on the body's medial ridge,
+    // where the depth falls off linearly (slope <= 1) on both sides.
+    EXPECT_LE(c.g[0].overlap, best + 2 * std::numbers::pi * a.r_in / S) << "pose " << k;
+    for (int m = 0; m < c.count; ++m) {
+      const ContactGeometry& g = c.g[m];
+      ASSERT_TRUE(g.normal.allFinite() && std::isfinite(g.overlap) && std::isfinite(g.radius));
+      EXPECT_NEAR((g.point - a.centre).norm(), a.r_in, 1e-12 * a.r_in);
+      EXPECT_NEAR(g.overlap, depth(g.point, b), 1e-13 * scale);
+      // A local maximum: nearby rim points are no deeper.
+      const Vector3d rel = g.point - a.centre;
+      const Vector3d tan = a.normal.cross(rel).normalized();
+      for (const double dt : {1e-4, -1e-4}) {
+        const double ang = dt;
+        const Vector3d q = a.centre + std::cos(ang) * rel + std::sin(ang) * a.r_in * tan;
+        EXPECT_LE(depth(q, b), g.overlap + 1e-12 * scale) << "pose " << k;
+      }
+    }
+  }
+  EXPECT_GT(tested, 100);
+  EXPECT_GT(pairs, 3);
+}
+
+TEST(EllipsoidAnnulus, OverlapIsContinuousAcrossTheRim) {
+  // A tilted spheroid slid over the orifice's rim, from the floor to the
+  // hole: the deepest overlap changes in proportion to the step when the
+  // contact passes from the face to the rim and when it leaves the rim (no
+  // jump).
+  Annulus a;
+  a.r_in = 1;
+  Ellipsoid b;
+  b.semi_axes = Vector3d(0.6, 0.25, 0.2);
+  b.orientation = Quat(Eigen::AngleAxisd(0.4, Vector3d(0, 1, 0)) * Eigen::AngleAxisd(0.7, Vector3d(0, 0, 1)));
+  const double h = 0.5 * 1e-4;
+  double last = NAN;
+  bool was_face = true, switched = false;
+  for (double x = 2.0; x > 0.2; x -= h) {
+    b.centre = Vector3d(x, 0.05, 0.0);
+    // Keep the body 0.01 deep in the floor's plane: its support along z.
+    const SymMat3 q = b.form();
+    b.centre.z() = std::sqrt(q[5]) - 0.01;
+    const AnnulusContacts c = ellipsoid_annulus_contacts(b, a);
+    double deepest = 0;  // no contact: the body is over the hole, clear of the rim
+    for (int m = 0; m < c.count; ++m) deepest = std::max(deepest, c.g[m].overlap);
+    if (!std::isnan(last)) {
+      EXPECT_LT(std::abs(deepest - last), 2 * h) << "x = " << x;
+    }
+    last = deepest;
+    if (c.count == 0) break;
+    if (was_face && !c.face[0]) switched = true;
+    was_face = c.face[0];
+  }
+  EXPECT_TRUE(switched);
+  EXPECT_EQ(last, 0.0) << "never cleared the rim";
+}
+
+TEST(EllipsoidAnnulus, HardPosesStayFinite) {
+  // Aspect ratios up to 1e3, centres in the sheet, on the hole's axis, bodies
+  // engulfing the whole rim: finite results, at most two contacts.
+  Rng rng(73);
+  for (int k = 0; k < 3000; ++k) {
+    Annulus a = random_annulus(rng);
+    Ellipsoid b;
+    const double big = rng.uniform(0.1, 3);
+    b.semi_axes = Vector3d(big, big / rng.log_uniform(1, 1e3), big / rng.log_uniform(1, 1e3));
+    b.orientation = rng.rotation();
+    const int where = k % 3;
+    Vector3d e1, e2;
+    tangent_basis(a.normal, e1, e2);
+    if (where == 0) b.centre = a.centre;  // on the axis, in the sheet
+    else if (where == 1) b.centre = a.centre + a.r_in * e1 + rng.uniform(-1, 1) * big * a.normal;  // on the rim
+    else b.centre = a.centre + rng.uniform(0, 4) * e2;  // in the sheet
+    const AnnulusContacts c = ellipsoid_annulus_contacts(b, a);
+    ASSERT_LE(c.count, 2);
+    for (int m = 0; m < c.count; ++m) {
+      ASSERT_TRUE(std::isfinite(c.g[m].overlap) && c.g[m].overlap > 0) << "pose " << k;
+      ASSERT_TRUE(c.g[m].normal.allFinite() && std::abs(c.g[m].normal.norm() - 1) < 1e-12) << "pose " << k;
+      ASSERT_TRUE(c.g[m].point.allFinite() && std::isfinite(c.g[m].radius) && c.g[m].radius > 0) << "pose " << k;
+    }
+    if (c.count == 2) {
+      EXPECT_NE(c.slot[0], c.slot[1]);
+    }
+  }
+  // A round body larger than the hole, centred on it: one contact, the whole
+  // rim inside it.
+  Annulus hole;
+  hole.r_in = 0.5;
+  Ellipsoid ball;
+  ball.semi_axes = Vector3d::Constant(1);
+  ball.centre = Vector3d(0, 0, 0.8);
+  const AnnulusContacts c = ellipsoid_annulus_contacts(ball, hole);
+  ASSERT_EQ(c.count, 1);
+  EXPECT_NEAR(c.g[0].overlap, 1 - std::hypot(0.5, 0.8), 1e-14);
 }
 
 }  // namespace
