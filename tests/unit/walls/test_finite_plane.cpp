@@ -280,6 +280,43 @@ TEST(FinitePlaneWall, EllipsoidBesideTheHoleRestsOnTheFaceAsOnAPlane) {
   EXPECT_EQ(d.two_contact_steps, 0);
 }
 
+TEST(FinitePlaneWall, SpheroidsDrainThroughTheOrificeAndNeverThroughThePlate) {
+  // A tiny silo of 100 prolate spheroids (aspect ratio 2, random
+  // orientations): they drain through a hole of radius 2.5 equivalent
+  // diameters, and no spheroid centre ever lies below the plate outside the
+  // hole by more than its smallest semi-axis (it would have gone through
+  // the face or the rim).
+  const std::string yaml = R"(
+domain: {min: [-0.006, -0.006, -0.003], max: [0.006, 0.006, 0.02]}
+gravity: [0, 0, -9.81]
+materials:
+  - {name: m, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3, restitution: 0.5, friction: 0.3}
+particles:
+  - {material: m, radius: 0.0005, count: 100, shape: {type: ellipsoid, aspect_ratio: 2}, placement: {type: random_fill, region: {min: [-0.0035, -0.0035, 0.0006], max: [0.0035, 0.0035, 0.02]}}}
+walls:
+  - {type: plane, name: bottom, point: [0, 0, 0], normal: [0, 0, 1], hole_radius: 0.0025, material: m}
+  - {type: cylinder, base: [0, 0, -0.001], radius: 0.005, height: 0.021, material: m}
+time: {dt_rayleigh: 0.2, end: 0.15}
+)";
+  auto s = from_yaml(yaml);
+  s.pipeline.initialize(s.scene);
+  const auto& p = s.scene.particles;
+  int leaks = 0, rim_steps = 0;
+  while (s.scene.clock.step < s.scene.clock.n_steps) {
+    s.pipeline.step(s.scene);
+    for (std::size_t i = 0; i < p.n_owned(); ++i) {
+      const double rho = std::hypot(p.x[i].x(), p.x[i].y());
+      const double b = p.semi_axes[i].minCoeff();
+      if (p.x[i].z() < -b && rho > 0.0025 + b) ++leaks;
+      if (p.x[i].z() > -p.radius[i] && p.x[i].z() < p.radius[i] && std::abs(rho - 0.0025) < p.radius[i]) ++rim_steps;
+    }
+  }
+  EXPECT_EQ(leaks, 0);
+  EXPECT_GT(rim_steps, 1000) << "no spheroid came near the rim";
+  EXPECT_GT(s.scene.lost_particles, 20) << "the silo does not drain";
+  EXPECT_LT(s.scene.lost_particles, 100);
+}
+
 TEST(FinitePlaneWall, WallsFileReadsBackAndMassOutputFollowsTheDischarge) {
   // A tiny silo: a cylinder on a plane with a hole of radius 2.5 d; the mass
   // above the plane falls as the grains drain, the grains that left are
