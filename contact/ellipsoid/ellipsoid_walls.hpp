@@ -54,9 +54,10 @@
 //  deepest); with one, a rim maximum counts only when the segment from q0 to
 //  it crosses the hole (it belongs to another part of the body's section
 //  with the sheet; otherwise the face contact already holds that part).
-// Slot of a contact: by the side of the body's longest axis it lies on
-// (0: (point - centre) . v_long >= 0), the second contact taking the other
-// slot, so a contact that moves from a face to a rim keeps its history.
+// Slots (a preference; sim/walls/wall_contact_stage.hpp lets a lone contact
+// continue the slot that holds history): a face contact 0, a rim contact
+// beside it 1; rim contacts by the side of the body's longest axis they lie
+// on (0: (point - centre) . v_long >= 0), the second taking the other slot.
 #include <Eigen/Core>
 
 #include "contact/contact_geometry.hpp"

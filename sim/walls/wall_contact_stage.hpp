@@ -106,9 +106,10 @@ class PlaneWallStage final : public Stage {
   }
 
   // Up to two contacts (contact/ellipsoid/ellipsoid_walls.hpp), each in its
-  // own slot (the wall has two: hist and hist + H). A lone rim contact
-  // continues the slot that holds history, if only one does: it is the
-  // contact of the previous step, moved.
+  // own slot (the wall has two: hist and hist + H). A lone contact (face or
+  // rim), or a face contact beside a rim one, continues the slot that holds
+  // history if only one does: it is the contact of the previous step, moved
+  // (e.g. from the rim onto the face).
   static void ellipsoid_annulus(Scene& s, std::size_t i, const PlaneWall& wall, const contact::Annulus& a,
                                 double* hist) {
     ParticleStore& p = s.particles;
@@ -117,10 +118,15 @@ class PlaneWallStage final : public Stage {
         contact::ellipsoid_annulus_contacts({p.x[i], p.semi_axes[i], p.orientation[i]}, a);
     int slot[2] = {c.slot[0], c.slot[1]};
     if constexpr (H > 0) {
-      if (c.count == 1 && !c.face[0]) {
+      // A lone contact, or a face contact beside a rim one, continues the
+      // slot that holds history if only one does.
+      if (c.count == 1 || c.face[0]) {
         auto held = [&](int k) { return std::any_of(hist + k * H, hist + (k + 1) * H, [](double v) { return v != 0.0; }); };
         const bool h0 = held(0), h1 = held(1);
-        if (h0 != h1) slot[0] = h0 ? 0 : 1;
+        if (h0 != h1) {
+          slot[0] = h0 ? 0 : 1;
+          slot[1] = 1 - slot[0];
+        }
       }
     }
     bool used[2] = {false, false};

@@ -20,12 +20,14 @@
 // Checked against packing_references.yaml `clump_resolution_effect` and
 // `clump_resolution_convergence`; recorded in docs/decomposition.md.
 //
-// BunnyPourAgainstResolution: the same periodic pour with 400 of
-// cases/pour_clumps/bunny.off at grid 8, 12 and 16 (one seed): poured phi and
+// BunnyPourAgainstResolution: the same periodic pour with
+// cases/pour_clumps/bunny.off at grid 8, 12 and 16 (one seed; as many bunnies
+// as hold the solid of 400 grid-8 ones, so the beds are equally deep): poured phi and
 // DEM cost per step, recorded in bench/RESULTS.md (a measurement: it checks
 // only that every pour keeps its grains and comes to rest).
 #include <gtest/gtest.h>
 
+#include "io/case/clump_shapes.hpp"
 #include "tests/regression/clump/clump_pour.hpp"
 
 namespace grains::test {
@@ -196,16 +198,26 @@ TEST(ClumpRegressionLong, CubeResolutionSweep) {
 
 TEST(ClumpRegressionLong, BunnyPourAgainstResolution) {
   const std::vector<int> grids = {8, 12, 16};
-  std::vector<double> n3, phi, ms_step, wall, dt;
+  const std::string mesh = std::string(GRAINS_SOURCE_DIR) + "/cases/pour_clumps/bunny.off";
+  // Every grid's clump is scaled to the same bounding radius, and the finer
+  // unions hold less solid (0.54, 0.37, 0.31 mm^3 per bunny at grid 8, 12,
+  // 16): the count grows so that every bed holds the solid of 400 grid-8
+  // bunnies and is as deep (with 400 at every grid the grid-16 bulk slab was
+  // only 2.2 mm thick).
+  const double v8 = io::clump_shape_from_mesh(mesh, 8, 0.25)->volume;
+  std::vector<double> n3, phi, ms_step, wall, dt, counts;
   for (int grid : grids) {
     PeriodicPourConfig c;
-    c.mesh = std::string(GRAINS_SOURCE_DIR) + "/cases/pour_clumps/bunny.off";
+    c.mesh = mesh;
     c.grid = grid;
-    // A bunny fills less of its bounding sphere than a cube: 400 of them make
-    // a bed about as deep as 250 cubes (fill up to 0.1 m, 0.14 s of fall).
-    c.count = 400;
-    c.fill_top = 0.1;
-    c.end = 0.22;
+    // A bunny fills less of its bounding sphere than a cube: 400 grid-8
+    // bunnies make a bed about as deep as 250 cubes (fill up to 0.1 m,
+    // 0.14 s of fall); more bunnies fill proportionally higher and fall longer.
+    const double scale = v8 / io::clump_shape_from_mesh(mesh, grid, 0.25)->volume;
+    c.count = static_cast<int>(std::lround(400 * scale));
+    c.fill_top = 0.1 * scale;
+    c.end = 0.22 + std::sqrt(2 * c.fill_top / 9.81) - std::sqrt(2 * 0.1 / 9.81);
+    counts.push_back(c.count);
     const PeriodicPour r = pour_periodic(c);
     EXPECT_EQ(r.bodies, static_cast<std::size_t>(c.count)) << "bunnies lost at grid " << grid;
     EXPECT_LT(r.rms_speed, packing::settled_speed()) << "not settled at grid " << grid;
@@ -216,8 +228,9 @@ TEST(ClumpRegressionLong, BunnyPourAgainstResolution) {
     ms_step.push_back(1e3 * r.wall_s / static_cast<double>(r.steps));
   }
   packing::record("bunny_resolution", packing::Record()
-                                          .str("case", "400 frictional bunnies (bunny.off, mu 0.25), 6 mm periodic box, E = 1 MPa, e = 0.5, friction 0.5, seed 1")
+                                          .str("case", "frictional bunnies (bunny.off, mu 0.25) with the solid of 400 grid-8 bunnies, 6 mm periodic box, E = 1 MPa, e = 0.5, friction 0.5, seed 1")
                                           .nums("grid", std::vector<double>(grids.begin(), grids.end()))
+                                          .nums("count", counts)
                                           .nums("n3", n3)
                                           .nums("phi", phi)
                                           .nums("dt", dt)
