@@ -206,6 +206,7 @@ void run_fft(Job& j, const SceneGrains& scene, int threads) {
   for (std::size_t i = 0; i < scene.ell_x.size(); ++i) push_ellipsoid(scene.ell_x[i], scene.ell_axes[i], scene.ell_q[i]);
 
   std::vector<std::uint32_t> cand, near;  // nodes: free, near-free
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pool;  // (node, orientation) of both kinds, this round
   std::vector<Quat> orient;
   std::vector<double> field;
   const bool spin = c.grains.shape.kind != ShapeConfig::Kind::Sphere && c.grains.shape.random_orientation;
@@ -243,10 +244,12 @@ void run_fft(Job& j, const SceneGrains& scene, int threads) {
     orient.clear();
     for (int k = 0; k < n_orient; ++k) orient.push_back(spin ? uniform_rotation(j.rng) : j.orientation());
     const std::size_t before = j.out.size();
+    const double fields_before = j.st.field_seconds;
     std::int64_t visited = 0;
     std::uniform_real_distribution<double> jitter(-0.5 * h, 0.5 * h);
     constexpr int kTrialsPerCell = 4;
     std::unique_ptr<gc::SceneOverlap> ov;
+    pool.clear();
     // One orientation at a time: its field, then its candidates, so that a
     // time budget sees grains placed from the first field on.
     for (std::size_t k = 0; k < orient.size() && !j.done() && !j.out_of_time(); ++k) {
@@ -272,6 +275,8 @@ void run_fft(Job& j, const SceneGrains& scene, int threads) {
       }
       j.st.field_seconds += since(tf);
       j.st.candidates += static_cast<std::int64_t>(cand.size() + near.size());
+      for (const auto n : cand) pool.emplace_back(n, static_cast<std::uint32_t>(k));
+      for (const auto n : near) pool.emplace_back(n, static_cast<std::uint32_t>(k));
       std::shuffle(cand.begin(), cand.end(), j.rng);
       std::shuffle(near.begin(), near.end(), j.rng);
       // The nodes first, then random points in the cells of the near-free
@@ -288,6 +293,33 @@ void run_fft(Job& j, const SceneGrains& scene, int threads) {
         const auto t = grid.node(n);
         for (int q = 0; q < kTrialsPerCell; ++q)
           if (j.try_place(Vec3(t[0] + jitter(j.rng), t[1] + jitter(j.rng), t[2] + jitter(j.rng)), orient[k])) break;
+      }
+    }
+    const double round_field_seconds = j.st.field_seconds - fields_before;
+    // Pocket search: random points in the cells of this round's free and
+    // near-free nodes, cells drawn uniformly. Free space only shrinks as
+    // grains are placed, so these cells still hold every place a grain can
+    // go (up to the kNear bound), at a far higher hit rate than trials over
+    // the whole region; a new field is computed only after as many failures
+    // in a row as kTrialsPerCell per cell.
+    // It also runs at least as long as this round's fields took: a field is
+    // worth computing again only when the pockets have cost as much.
+    if (!pool.empty()) {
+      std::uniform_int_distribution<std::size_t> pick(0, pool.size() - 1);
+      const auto patience = static_cast<std::int64_t>(std::max<std::size_t>(1000, kTrialsPerCell * pool.size()));
+      const auto t_pockets = Clock::now();
+      std::int64_t fails = 0;
+      while (!j.done() && (fails < patience || since(t_pockets) < round_field_seconds)) {
+        if ((++visited & 63) == 0 && j.out_of_time()) break;
+        const auto& [n, k] = pool[pick(j.rng)];
+        const auto t = grid.node(n);
+        // Grains that turn: every other trial in a fresh orientation (a
+        // pocket too tight for the field's orientation may take another).
+        const Quat o = spin && (fails & 1) ? uniform_rotation(j.rng) : orient[k];
+        if (j.try_place(Vec3(t[0] + jitter(j.rng), t[1] + jitter(j.rng), t[2] + jitter(j.rng)), o))
+          fails = 0;
+        else
+          ++fails;
       }
     }
     // Two rounds in a row placed nothing (two grids, new orientations): the

@@ -22,11 +22,17 @@
 //    check against the scene, the walls and the grains placed so far; then
 //    random points in the cells of near-free nodes (V below 4 lens volumes
 //    at the penetration delta + h sqrt(3)/2: pockets between nodes), a few
-//    each. When the candidates run out before the count is reached, the
-//    field is recomputed with the new grains in the scene, new trial
-//    orientations and the nodes shifted by a random fraction of a cell,
-//    until two rounds in a row place nothing or the budget is spent. Each
-//    orientation's candidates are visited as soon as its field is ready.
+//    each. Then a pocket search: random points in the cells of the round's
+//    free and near-free nodes, cells drawn uniformly (grains that turn: every
+//    other trial in a fresh random orientation). Free space only shrinks as
+//    grains are placed, so those cells keep holding the places left, at a
+//    far higher hit rate than trials over the whole region; it stops after
+//    4 failures per cell in a row, but not before it has run as long as the
+//    round's fields took. Then the field is recomputed with the new grains
+//    in the scene, new trial orientations and the nodes shifted by a random
+//    fraction of a cell, until two rounds in a row place nothing or the
+//    budget is spent. Each orientation's candidates are visited as soon as
+//    its field is ready.
 //
 // The scene enters as balls: spheres and clump balls as they are, ellipsoids
 // by their conservative ball covers (grain_geometry.hpp), radii rounded up to
