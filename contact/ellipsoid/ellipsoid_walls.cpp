@@ -1,9 +1,8 @@
 // Ellipsoid-plane and ellipsoid-cylinder contacts: see ellipsoid_walls.hpp.
 #include "contact/ellipsoid/ellipsoid_walls.hpp"
 
-#include <cmath>
-
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include "contact/ellipsoid/point_ellipsoid.hpp"
@@ -150,7 +149,6 @@ ContactGeometry ellipsoid_cylinder_contact(const Ellipsoid& body, const Cylinder
   return g;
 }
 
-
 namespace {
 
 // A rim circle q(t) = c + rho (cos t e1 + sin t e2) and the body's quadratic
@@ -178,7 +176,6 @@ struct RimCircle {
 };
 
 struct RimMax {
-  double theta = 0;
   Vector3d q;
   ClosestPoint cp;
   double depth() const { return -cp.signed_distance; }
@@ -221,7 +218,6 @@ int rim_maxima(const Ellipsoid& body, const RimCircle& rim, RimMax out[2]) {
   auto g = [&](double t) { return closest(t).normal.dot(rim.tangent(t)); };
   auto finish = [&](double t) {
     RimMax r;
-    r.theta = t;
     r.q = rim.at(t);
     r.cp = closest(t);
     return r;
@@ -240,7 +236,7 @@ int rim_maxima(const Ellipsoid& body, const RimCircle& rim, RimMax out[2]) {
     return out[0].depth() > 0.0 ? 1 : 0;
   }
   int n = 0;
-  double arcs[2][2];
+  double arc_start[2];  // left ends of the arcs found (one arc can hold two sampled minima)
   for (int j = 0; j < N && n < 2; ++j) {
     const int jl = (j + N - 1) % N, jr = (j + 1) % N;
     if (!(fs[j] <= fs[jl] && fs[j] < fs[jr])) continue;
@@ -270,9 +266,9 @@ int rim_maxima(const Ellipsoid& body, const RimCircle& rim, RimMax out[2]) {
     const double a = end(-1), b = end(+1);
     bool seen = false;
     for (int m = 0; m < n; ++m)
-      seen = seen || std::abs(std::remainder(arcs[m][0] - a, 2.0 * std::numbers::pi)) < 1e-9;
+      seen = seen || std::abs(std::remainder(arc_start[m] - a, 2.0 * std::numbers::pi)) < 1e-9;
     if (seen) continue;
-    arcs[n][0] = a, arcs[n][1] = b;
+    arc_start[n] = a;
     const double ga = g(a), gb = g(b);
     const double root = ga <= 0.0 && gb >= 0.0 ? illinois(g, a, b, ga, gb) : t;
     out[n] = finish(root);
@@ -316,17 +312,16 @@ AnnulusContacts ellipsoid_annulus_contacts(const Ellipsoid& body, const Annulus&
   int nc = 0;
   if (on_face) cand[nc++] = {face, true};
 
-  const SymMat3 q = body.form();
-  const Mat3 rot = body.orientation.toRotationMatrix();
-  const Vector3d w = body.semi_axes.cwiseProduct(body.semi_axes).cwiseInverse();
-  auto wdot = [&](const Vector3d& a, const Vector3d& b) {
-    const Vector3d ab = rot.transpose() * a, bb = rot.transpose() * b;
-    return (ab.cwiseProduct(w)).dot(bb);
-  };
-  Vector3d e1, e2;
-  tangent_basis(n, e1, e2);
+  // Quadratic form, rotation and the rim's frame in body axes: set up only
+  // when a rim passes the quick reject (most bodies on a face are far from it).
   const double bound = body.semi_axes.maxCoeff();
   const double rho_x = (rel - hn * n).norm();
+  bool ready = false;
+  SymMat3 q{};
+  Mat3 rot = Mat3::Identity();
+  Vector3d e1, e2;
+  tangent_basis(n, e1, e2);
+  double wdd = 0, wd1 = 0, wd2 = 0, w11 = 0, w12 = 0, w22 = 0;  // (Q^-1-weighted dots of d, e1, e2)
   for (const double rho : {wall.r_in, wall.r_out}) {
     if (!(rho > 0.0) || !std::isfinite(rho)) continue;
     // Off the faces, only the rim on q0's side: the body's section reaches
@@ -334,18 +329,31 @@ AnnulusContacts ellipsoid_annulus_contacts(const Ellipsoid& body, const Annulus&
     if (!on_face && (rho0 < wall.r_in) != (rho == wall.r_in)) continue;
     // Quick reject: the circle stays farther from the centre than the body reaches.
     if (hn * hn + (rho_x - rho) * (rho_x - rho) >= bound * bound) continue;
+    if (!ready) {
+      ready = true;
+      q = body.form();
+      rot = body.orientation.toRotationMatrix();
+      const Vector3d w = body.semi_axes.cwiseProduct(body.semi_axes).cwiseInverse();
+      const Vector3d db = rot.transpose() * (wall.centre - body.centre);
+      const Vector3d e1b = rot.transpose() * e1, e2b = rot.transpose() * e2;
+      wdd = db.cwiseProduct(w).dot(db);
+      wd1 = db.cwiseProduct(w).dot(e1b);
+      wd2 = db.cwiseProduct(w).dot(e2b);
+      w11 = e1b.cwiseProduct(w).dot(e1b);
+      w12 = e1b.cwiseProduct(w).dot(e2b);
+      w22 = e2b.cwiseProduct(w).dot(e2b);
+    }
     RimCircle rim;
     rim.c = wall.centre;
     rim.e1 = e1;
     rim.e2 = e2;
     rim.rho = rho;
-    const Vector3d d = wall.centre - body.centre;
-    rim.k[0] = wdot(d, d);
-    rim.k[1] = 2.0 * rho * wdot(d, e1);
-    rim.k[2] = 2.0 * rho * wdot(d, e2);
-    rim.k[3] = rho * rho * wdot(e1, e1);
-    rim.k[4] = 2.0 * rho * rho * wdot(e1, e2);
-    rim.k[5] = rho * rho * wdot(e2, e2);
+    rim.k[0] = wdd;
+    rim.k[1] = 2.0 * rho * wd1;
+    rim.k[2] = 2.0 * rho * wd2;
+    rim.k[3] = rho * rho * w11;
+    rim.k[4] = 2.0 * rho * rho * w12;
+    rim.k[5] = rho * rho * w22;
     RimMax maxima[2];
     const int nm = rim_maxima(body, rim, maxima);
     for (int k = 0; k < nm; ++k) {
@@ -369,20 +377,15 @@ AnnulusContacts ellipsoid_annulus_contacts(const Ellipsoid& body, const Annulus&
   for (int k = 1; k < nc; ++k)  // insertion sort of at most five
     for (int j = k; j > 0 && before(cand[j], cand[j - 1]); --j) std::swap(cand[j], cand[j - 1]);
   out.count = std::min(nc, 2);
-  int longest = 0;
-  body.semi_axes.maxCoeff(&longest);
-  const Vector3d v_long = rot.col(longest);
   for (int k = 0; k < out.count; ++k) {
     out.g[k] = cand[k].g;
     out.face[k] = cand[k].face;
   }
-  if (out.count > 0) {
-    if (out.face[0]) {
-      out.slot[0] = 0, out.slot[1] = 1;
-    } else {
-      out.slot[0] = (out.g[0].point - body.centre).dot(v_long) >= 0.0 ? 0 : 1;
-      out.slot[1] = 1 - out.slot[0];
-    }
+  if (out.count > 0 && !out.face[0]) {  // rims only (then `rot` is set)
+    int longest = 0;
+    body.semi_axes.maxCoeff(&longest);
+    out.slot[0] = (out.g[0].point - body.centre).dot(rot.col(longest)) >= 0.0 ? 0 : 1;
+    out.slot[1] = 1 - out.slot[0];
   }
   return out;
 }

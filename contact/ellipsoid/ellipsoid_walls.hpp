@@ -50,10 +50,11 @@
 //    into the body, the sphere-annulus normal for a sphere), point = q,
 //    R* from the body's curvature there (the edge's own curvature neglected,
 //    as for spheres).
-//  Without a face contact every rim maximum counts (at most two kept, the
-//  deepest); with one, a rim maximum counts only when the segment from q0 to
-//  it crosses the hole (it belongs to another part of the body's section
-//  with the sheet; otherwise the face contact already holds that part).
+//  Without a face contact the maxima on the rim on q0's side count (the
+//  hole's if q0 lies in the hole, else the outer one); with one, a rim
+//  maximum counts only when the segment from q0 to it crosses the hole (it
+//  belongs to another part of the body's section with the sheet; otherwise
+//  the face contact already holds that part).
 // Slots (a preference; sim/walls/wall_contact_stage.hpp lets a lone contact
 // continue the slot that holds history): a face contact 0, a rim contact
 // beside it 1; rim contacts by the side of the body's longest axis they lie

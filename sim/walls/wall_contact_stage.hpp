@@ -121,7 +121,9 @@ class PlaneWallStage final : public Stage {
       // A lone contact, or a face contact beside a rim one, continues the
       // slot that holds history if only one does.
       if (c.count == 1 || c.face[0]) {
-        auto held = [&](int k) { return std::any_of(hist + k * H, hist + (k + 1) * H, [](double v) { return v != 0.0; }); };
+        auto held = [&](int k) {
+          return std::any_of(hist + k * H, hist + (k + 1) * H, [](double v) { return v != 0.0; });
+        };
         const bool h0 = held(0), h1 = held(1);
         if (h0 != h1) {
           slot[0] = h0 ? 0 : 1;

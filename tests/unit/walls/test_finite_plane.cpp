@@ -298,25 +298,30 @@ TEST(FinitePlaneWall, EllipsoidBesideTheHoleRestsOnTheFaceAsOnAPlane) {
   EXPECT_EQ(d.two_contact_steps, 0);
 }
 
+// A tiny silo: grains of radius 0.5 mm (`particles`: the set's count and
+// shape keys) filled into a cylinder of radius 5 mm on a plane with a hole of
+// radius 2.5 mm, run to `end` s; `extra` lines are appended (e.g. output).
+std::string tiny_silo(const std::string& particles, double end, const std::string& extra = "") {
+  std::ostringstream y;
+  y << "domain: {min: [-0.006, -0.006, -0.003], max: [0.006, 0.006, 0.02]}\ngravity: [0, 0, -9.81]\nmaterials:\n"
+    << "  - {name: m, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3, restitution: 0.5, friction: 0.3}\n"
+    << "particles:\n  - {material: m, radius: 0.0005, " << particles
+    << ", placement: {type: random_fill, region: {min: [-0.0035, -0.0035, 0.0006], max: [0.0035, 0.0035, 0.02]}}}\n"
+    << "walls:\n"
+    << "  - {type: plane, name: bottom, point: [0, 0, 0], normal: [0, 0, 1], hole_radius: 0.0025, material: m}\n"
+    << "  - {type: cylinder, base: [0, 0, -0.001], radius: 0.005, height: 0.021, material: m}\n"
+    << "time: {dt_rayleigh: 0.2, end: " << end << "}\n"
+    << extra;
+  return y.str();
+}
+
 TEST(FinitePlaneWall, SpheroidsDrainThroughTheOrificeAndNeverThroughThePlate) {
   // A tiny silo of 100 prolate spheroids (aspect ratio 2, random
   // orientations): they drain through a hole of radius 2.5 equivalent
   // diameters, and no spheroid centre ever lies below the plate outside the
   // hole by more than its smallest semi-axis (it would have gone through
   // the face or the rim).
-  const std::string yaml = R"(
-domain: {min: [-0.006, -0.006, -0.003], max: [0.006, 0.006, 0.02]}
-gravity: [0, 0, -9.81]
-materials:
-  - {name: m, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3, restitution: 0.5, friction: 0.3}
-particles:
-  - {material: m, radius: 0.0005, count: 100, shape: {type: ellipsoid, aspect_ratio: 2}, placement: {type: random_fill, region: {min: [-0.0035, -0.0035, 0.0006], max: [0.0035, 0.0035, 0.02]}}}
-walls:
-  - {type: plane, name: bottom, point: [0, 0, 0], normal: [0, 0, 1], hole_radius: 0.0025, material: m}
-  - {type: cylinder, base: [0, 0, -0.001], radius: 0.005, height: 0.021, material: m}
-time: {dt_rayleigh: 0.2, end: 0.15}
-)";
-  auto s = from_yaml(yaml);
+  auto s = from_yaml(tiny_silo("count: 100, shape: {type: ellipsoid, aspect_ratio: 2}", 0.15));
   s.pipeline.initialize(s.scene);
   const auto& p = s.scene.particles;
   int leaks = 0, rim_steps = 0;
@@ -339,20 +344,9 @@ TEST(FinitePlaneWall, WallsFileReadsBackAndMassOutputFollowsTheDischarge) {
   // A tiny silo: a cylinder on a plane with a hole of radius 2.5 d; the mass
   // above the plane falls as the grains drain, the grains that left are
   // counted as lost, and the walls file reads back as a plane with a hole.
-  const std::string yaml = R"(
-domain: {min: [-0.006, -0.006, -0.003], max: [0.006, 0.006, 0.02]}
-gravity: [0, 0, -9.81]
-materials:
-  - {name: m, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3, restitution: 0.5, friction: 0.3}
-particles:
-  - {material: m, radius: 0.0005, count: 200, placement: {type: random_fill, region: {min: [-0.0035, -0.0035, 0.0006], max: [0.0035, 0.0035, 0.02]}}}
-walls:
-  - {type: plane, name: bottom, point: [0, 0, 0], normal: [0, 0, 1], hole_radius: 0.0025, material: m}
-  - {type: cylinder, base: [0, 0, -0.001], radius: 0.005, height: 0.021, material: m}
-time: {dt_rayleigh: 0.2, end: 0.12}
-output: {every: 0.06, progress: false, mass: {every: 0.01, point: [0, 0, 0], normal: [0, 0, 1]}}
-)";
-  auto s = from_yaml(yaml);
+  auto s = from_yaml(tiny_silo("count: 200", 0.12,
+                               "output: {every: 0.06, progress: false, mass: {every: 0.01, point: [0, 0, 0], normal: "
+                               "[0, 0, 1]}}\n"));
   const fs::path dir = fs::temp_directory_path() / "grains_test_finite_plane";
   fs::remove_all(dir);
   io::RunOptions opt;
