@@ -36,7 +36,10 @@ HalfSpectrum ball_spectrum(const BallSet& balls, const PeriodicBox& box,
     if (!(box.period[d] > 0.0)) throw std::invalid_argument("ball_spectrum: period must be > 0");
   HalfSpectrum out(max_mode);
   const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
-  const KernelSpec kernel = choose_kernel(std::clamp(opt.tolerance, 1e-14, 1e-1), opt.upsampling);
+  // Ball centres may sit on lattices (crystals, the nodes of a query grid):
+  // the tolerance must hold at every offset from the fine grid.
+  const KernelSpec kernel =
+      choose_kernel(std::clamp(opt.tolerance, 1e-14, 1e-1), opt.upsampling, ErrorModel::worst_offset);
   std::array<int, 3> fine;
   for (int d = 0; d < 3; ++d) fine[d] = fine_grid_size(2 * max_mode[d] + 1, kernel.sigma, kernel.width);
 

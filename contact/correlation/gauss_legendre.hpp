@@ -1,7 +1,7 @@
 #pragma once
 // Gauss–Legendre quadrature nodes and weights on [-1, 1], used to compute the
-// Fourier transform of the spreading kernel (which has no closed form for the
-// exponential-of-semicircle kernel).
+// Fourier transform of the spreading kernel (the prolate spheroidal wave
+// function has no closed form).
 #include <vector>
 
 namespace grains::correlation {

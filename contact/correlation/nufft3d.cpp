@@ -20,10 +20,11 @@ KernelSpec pick_kernel(std::array<int, 3> modes, double eps, const NufftOptions&
   if (sigma == 0.0) {
     // Auto: 1.25 when there are fewer points than modes (the FFT dominates).
     const double nm = static_cast<double>(modes[0]) * modes[1] * modes[2];
-    sigma = (static_cast<double>(opt.expected_points) < nm && kernel_feasible(eps, 1.25)) ? 1.25
-                                                                                          : 2.0;
+    sigma = (static_cast<double>(opt.expected_points) < nm && kernel_feasible(eps, 1.25, opt.error_model))
+                ? 1.25
+                : 2.0;
   }
-  return choose_kernel(eps, sigma);
+  return choose_kernel(eps, sigma, opt.error_model);
 }
 
 std::array<int, 3> pick_fine(std::array<int, 3> modes, const KernelSpec& k) {

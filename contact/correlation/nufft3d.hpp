@@ -10,7 +10,7 @@
 // fastest: f[(i3 * N2 + i2) * N1 + i1] holds k_d = i_d - floor(N_d/2).
 // Type 2 with sign -s is the adjoint of type 1 with sign s.
 //
-// Method: spread with the ES kernel onto a fine grid of n_d >= sigma N_d
+// Method: spread with the PSWF kernel onto a fine grid of n_d >= sigma N_d
 // nodes (next 2,3,5-smooth even size), FFT of the fine grid, then divide by
 // the kernel's Fourier transform (deconvolution) and truncate to the N modes;
 // type 2 runs the same steps backwards. The fine-grid FFT skips the lines
@@ -22,7 +22,7 @@
 #include <span>
 #include <vector>
 
-#include "contact/correlation/es_kernel.hpp"
+#include "contact/correlation/spreading_kernel.hpp"
 #include "contact/correlation/fftw_util.hpp"
 #include "contact/correlation/pruned_fft.hpp"
 #include "contact/correlation/spreader.hpp"
@@ -41,6 +41,11 @@ struct NufftOptions {
   // (bitwise); they depend on this to rounding (it fixes the summation order).
   int max_subproblem = 10000;
   std::size_t expected_points = 0;      // only used by upsampling = 0
+  // What eps bounds: the relative l2 error for points in general position
+  // (default), or for every point at its worst offset from the fine grid
+  // (points on a lattice commensurate with it; costs about one node of
+  // kernel width). spreading_kernel.hpp.
+  ErrorModel error_model = ErrorModel::general_position;
 };
 
 class Nufft3d {

@@ -1,6 +1,6 @@
 #pragma once
 // Spreading (non-uniform points -> fine grid) and interpolation (fine grid ->
-// points) with the ES kernel: the two non-FFT halves of the NUFFT.
+// points) with the spreading kernel: the two non-FFT halves of the NUFFT.
 //
 // Points are given in radians on the 2pi-periodic torus (any real value is
 // folded), converted to fine-grid coordinates u in [0, n) and sorted into bins
@@ -22,7 +22,7 @@
 #include <span>
 #include <vector>
 
-#include "contact/correlation/es_kernel.hpp"
+#include "contact/correlation/spreading_kernel.hpp"
 #include "contact/correlation/spreader_kernels.hpp"
 
 namespace grains::correlation {

@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "contact/correlation/es_kernel.hpp"
+#include "contact/correlation/spreading_kernel.hpp"
 
 namespace grains::correlation::detail {
 

@@ -77,10 +77,13 @@ TEST(Nufft3d, MatchesDirectSumForEveryTolerance) {
       const auto [e1, e2] = errors(p, n, eps, 2.0, sign, ref1, f, ref2);
       EXPECT_LE(e1, eps) << "type 1, sign " << sign << ", eps " << eps;
       EXPECT_LE(e2, eps) << "type 2, sign " << sign << ", eps " << eps;
-      // Not absurdly more accurate than asked either (the width follows eps).
-      if (e <= 10) {
-        EXPECT_GE(e1, 1e-4 * eps) << "type 1 eps " << eps;
-      }
+      // The a-priori prediction the width was chosen by (spreading_kernel.hpp)
+      // matches what is measured: not absurdly more accurate than asked either.
+      const double predicted = gc::predicted_error(gc::choose_kernel(eps, 2.0));
+      EXPECT_GT(e1, 0.6 * predicted) << "type 1 eps " << eps;
+      EXPECT_LT(e1, 1.25 * predicted) << "type 1 eps " << eps;
+      EXPECT_GT(e2, 0.6 * predicted) << "type 2 eps " << eps;
+      EXPECT_LT(e2, 1.25 * predicted) << "type 2 eps " << eps;
     }
   }
 }
@@ -91,8 +94,8 @@ TEST(Nufft3d, UpsamplingOnePointTwoFiveMeetsTolerance) {
   const auto f = random_modes(n, 4);
   const auto ref1 = gc::testing::direct_type1(p.x, p.y, p.z, p.c, n, -1);
   const auto ref2 = gc::testing::direct_type2(p.x, p.y, p.z, f, n, -1);
-  EXPECT_FALSE(gc::kernel_feasible(1e-9, 1.25));
-  for (int e = 2; e <= 8; ++e) {
+  EXPECT_FALSE(gc::kernel_feasible(1e-10, 1.25));
+  for (int e = 2; e <= 9; ++e) {
     const double eps = std::pow(10.0, -e);
     ASSERT_TRUE(gc::kernel_feasible(eps, 1.25));
     const auto [e1, e2] = errors(p, n, eps, 1.25, -1, ref1, f, ref2);
@@ -133,13 +136,27 @@ TEST(Nufft3d, PointsOnThePeriodBoundary) {
       p.z.push_back(edge[rng() % 10]);
       p.c.emplace_back(std::cos(a + b), std::sin(3 * a - b));
     }
+  // These points sit on fine-grid nodes (or a hair off): all at one offset,
+  // so the general-position tolerance does not apply (their error is that
+  // offset's, up to the worst offset's), the worst-offset one does.
   const auto f = random_modes(n, 8);
-  for (double eps : {1e-4, 1e-10}) {
-    const auto ref1 = gc::testing::direct_type1(p.x, p.y, p.z, p.c, n, +1);
-    const auto ref2 = gc::testing::direct_type2(p.x, p.y, p.z, f, n, +1);
+  const auto ref1 = gc::testing::direct_type1(p.x, p.y, p.z, p.c, n, +1);
+  const auto ref2 = gc::testing::direct_type2(p.x, p.y, p.z, f, n, +1);
+  for (double eps : {1e-3, 1e-4, 1e-6, 1e-10}) {
+    gc::NufftOptions opt;
+    opt.error_model = gc::ErrorModel::worst_offset;
+    gc::Nufft3d plan(n, eps, opt);
+    plan.set_points(p.x, p.y, p.z);
+    std::vector<Complex> f1(plan.num_modes()), c2(p.x.size());
+    plan.type1(p.c, f1, +1);
+    plan.type2(f, c2, +1);
+    EXPECT_LE(rel_l2(f1, ref1), eps) << eps;
+    EXPECT_LE(rel_l2(c2, ref2), eps) << eps;
+    // With the default model: bounded by its kernel's worst-offset error.
     const auto [e1, e2] = errors(p, n, eps, 2.0, +1, ref1, f, ref2);
-    EXPECT_LE(e1, eps);
-    EXPECT_LE(e2, eps);
+    const double worst = gc::predicted_error(gc::choose_kernel(eps, 2.0), gc::ErrorModel::worst_offset);
+    EXPECT_LE(e1, worst) << eps;
+    EXPECT_LE(e2, worst) << eps;
   }
 }
 
