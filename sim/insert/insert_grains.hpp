@@ -18,6 +18,10 @@
 //    scene ball, s the grain's largest ball; a position where only a
 //    smaller ball of a clump touches may pass and is then rejected by the
 //    exact check); nodes with V <= half of that are the candidates.
+//    Ellipsoids that turn use one field per round, of their core (the ball
+//    of the smallest semi-axis about the centre, inside the grain in every
+//    orientation: where the grain fits in some orientation its core fits),
+//    and draw each trial's orientation at random.
 //    They are visited in a random order (seeded), each confirmed by the exact
 //    check against the scene, the walls and the grains placed so far; then
 //    random points in the cells of near-free nodes (V below 4 lens volumes

@@ -15,7 +15,8 @@ std::vector<EffectDoc> insertion_docs() {
        "before them (checked exactly: sphere distances, the Perram-Wertheim function for ellipsoids, the balls of "
        "clumps). The grains are described as a particle set (material, radius, shape, velocity). method: fft "
        "computes the overlap volume of the grain (inflated by a margin) with the whole scene at every node of a "
-       "grid over the region, for several trial orientations, by a correlation in Fourier space (the "
+       "grid over the region (clumps that turn: one field per trial orientation; ellipsoids that turn: one of their core), by a "
+       "correlation in Fourier space (the "
        "configuration-space obstacle, docs/nfft.md), and visits the nodes where it vanishes in random order; "
        "method: random tries uniform random positions. fft pays off where free space is scarce (grains that "
        "barely fit the pores, non-spherical grains) and the budget exceeds one field's cost; random trials are "
@@ -35,7 +36,9 @@ std::vector<EffectDoc> insertion_docs() {
         key("every", K::Number, "time between insertions; absent: insert once").si("s").in(0, inf, true),
         key("until", K::Number, "no insertion after this time").def("the end").si("s").in(0, inf, true),
         key("orientations", K::Integer,
-            "fft: trial orientations per overlap field (non-spherical grains with random orientation)")
+            "fft: trial orientations, one overlap field each, per round (clumps with random orientation; "
+            "ellipsoids that turn use one field of their core, the ball of the smallest semi-axis, and "
+            "draw each trial's orientation at random)")
             .def("8").in(1, 1000),
         key("spacing", K::Number, "fft: grid spacing of the candidate positions; default a quarter of the radius of "
                                   "the grain's largest ball (a sphere: its radius; ellipsoids: of their ball cover)")
