@@ -10,10 +10,26 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <X11/Xlib.h>
+
 namespace grains::postprocess {
 
+namespace {
+
+// Whether an X client can connect to `display` now.
+bool can_open(const std::string& display) {
+  Display* d = XOpenDisplay(display.c_str());
+  if (!d) return false;
+  XCloseDisplay(d);
+  return true;
+}
+
+}  // namespace
+
 HeadlessDisplay::HeadlessDisplay() {
-  if (const char* d = std::getenv("DISPLAY"); d && *d) {
+  // A DISPLAY that cannot be opened (a stale one from an ssh session, say)
+  // would make VTK abort the process: start a private Xvfb instead.
+  if (const char* d = std::getenv("DISPLAY"); d && *d && can_open(d)) {
     display_ = d;
     return;
   }
@@ -64,12 +80,29 @@ HeadlessDisplay::HeadlessDisplay() {
   pid_ = pid;
   display_ = out.substr(0, nl);
   display_.insert(display_.begin(), ':');
+  // Xvfb reports the display once it listens; make sure a client can
+  // connect before VTK tries (VTK aborts when it cannot), retrying briefly
+  // on a loaded machine.
+  bool open = false;
+  for (int attempt = 0; attempt < 50 && !(open = can_open(display_)); ++attempt) usleep(100000);
+  if (!open) {
+    kill(pid_, SIGTERM);
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    pid_ = -1;
+    throw std::runtime_error("no X display: Xvfb started on " + display_ + " but no client could connect to it");
+  }
+  if (const char* d = std::getenv("DISPLAY")) previous_ = d;
+  had_previous_ = std::getenv("DISPLAY") != nullptr;
   setenv("DISPLAY", display_.c_str(), 1);
 }
 
 HeadlessDisplay::~HeadlessDisplay() {
   if (pid_ <= 0) return;
-  unsetenv("DISPLAY");
+  if (had_previous_)
+    setenv("DISPLAY", previous_.c_str(), 1);
+  else
+    unsetenv("DISPLAY");
   kill(pid_, SIGTERM);
   int status = 0;
   waitpid(pid_, &status, 0);

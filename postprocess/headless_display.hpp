@@ -1,7 +1,10 @@
 #pragma once
 // An X display for VTK's GLX render windows on a headless machine: when
-// DISPLAY is unset, starts `Xvfb -displayfd` (it picks a free display number
-// and reports it) and points DISPLAY at it until the guard is destroyed.
+// DISPLAY is unset or cannot be opened, starts `Xvfb -displayfd` (it picks a
+// free display number and reports it), waits until a client can connect,
+// and points DISPLAY at it until the guard is destroyed (then restores it).
+// VTK aborts the process when it cannot open its display; this guard throws
+// instead.
 #include <string>
 #include <sys/types.h>
 
@@ -9,7 +12,8 @@ namespace grains::postprocess {
 
 class HeadlessDisplay {
  public:
-  /// Throws std::runtime_error when there is no DISPLAY and Xvfb cannot start.
+  /// Throws std::runtime_error when there is no usable DISPLAY and Xvfb
+  /// cannot start or cannot be connected to.
   HeadlessDisplay();
   ~HeadlessDisplay();
   HeadlessDisplay(const HeadlessDisplay&) = delete;
@@ -22,6 +26,8 @@ class HeadlessDisplay {
  private:
   std::string display_;
   pid_t pid_ = -1;
+  std::string previous_;  // DISPLAY before this guard replaced it
+  bool had_previous_ = false;
 };
 
 }  // namespace grains::postprocess

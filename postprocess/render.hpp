@@ -6,9 +6,9 @@
 // translucent.
 //
 // Debian's VTK renders through GLX only (no EGL or OSMesa build), so it needs
-// an X server. When DISPLAY is unset, render_frame starts a private Xvfb
-// (Debian package xvfb) for the duration of the call and stops it afterwards;
-// with DISPLAY set it uses that display.
+// an X server. When DISPLAY is unset or cannot be opened, render_frame starts
+// a private Xvfb (Debian package xvfb) for the duration of the call and stops
+// it afterwards; otherwise it uses DISPLAY (headless_display.hpp).
 #include <filesystem>
 #include <string>
 

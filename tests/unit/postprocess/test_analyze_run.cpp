@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <unistd.h>
@@ -168,6 +169,26 @@ TEST_F(AnalyzeRun, RenderIsNotBlank) {
             1);
   EXPECT_NE(err.str().find("radius"), std::string::npos);
   EXPECT_EQ(io::run_render_command({(dir_ / "out").string()}, out, err), 2);  // no -o
+}
+
+TEST_F(AnalyzeRun, RenderWithAStaleDisplayStartsItsOwn) {
+  // A DISPLAY that cannot be opened (e.g. left over from an ssh session)
+  // made VTK abort the process; the renderer now starts its own Xvfb, and
+  // gives the caller's DISPLAY back afterwards.
+  const char* before = std::getenv("DISPLAY");
+  const std::string saved = before ? before : "";
+  setenv("DISPLAY", ":987654", 1);
+  const fs::path png = dir_ / "stale.png";
+  RenderOptions o;
+  o.width = 160;
+  o.height = 120;
+  EXPECT_NO_THROW(render_frame(dir_ / "out", -1, o, png));
+  EXPECT_TRUE(fs::exists(png));
+  EXPECT_STREQ(std::getenv("DISPLAY"), ":987654");
+  if (before)
+    setenv("DISPLAY", saved.c_str(), 1);
+  else
+    unsetenv("DISPLAY");
 }
 
 }  // namespace
