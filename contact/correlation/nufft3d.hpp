@@ -57,6 +57,8 @@ class Nufft3d {
 
   // Points in radians (2pi-periodic). Sorted once; reused by every transform
   // until the next call. M = 0 is allowed (every transform returns zeros).
+  // A NaN or infinite coordinate throws std::invalid_argument naming the
+  // point; the previous points stay set.
   void set_points(std::span<const double> x, std::span<const double> y,
                   std::span<const double> z);
 

@@ -116,16 +116,24 @@ void Spreader::set_points(std::span<const double> x, std::span<const double> y, 
   // Bins in the caller's order, then a counting sort by bin. The scratch
   // arrays are members: reused across calls, they cost no page faults.
   bin_.resize(m);
-#pragma omp parallel for num_threads(threads_) schedule(static)
+  bool non_finite = false;
+#pragma omp parallel for num_threads(threads_) schedule(static) reduction(|| : non_finite)
   for (std::int64_t j = 0; j < static_cast<std::int64_t>(m); ++j) {
     std::uint32_t tile = 0, in_tile = 0;
     for (int d = 2; d >= 0; --d) {
+      non_finite = non_finite || !std::isfinite(in[d][j]);
       const double v = fold(in[d][j] * inv2pi, fine_[d]);
       const auto bd = static_cast<std::uint32_t>(std::min(nb[d] - 1, static_cast<int>(v * (1.0 / kBin[d]))));
       tile = tile * static_cast<std::uint32_t>(nt[d]) + bd / kTile;
       in_tile = in_tile * kTile + bd % kTile;
     }
     bin_[j] = tile * tile_bins + in_tile;
+  }
+  if (non_finite) {  // nothing but the scratch bins changed: the previous points stay set
+    std::size_t j = 0;
+    while (std::isfinite(x[j]) && std::isfinite(y[j]) && std::isfinite(z[j])) ++j;
+    throw std::invalid_argument("set_points: point " + std::to_string(j) + " has a non-finite coordinate (" +
+                                std::to_string(x[j]) + ", " + std::to_string(y[j]) + ", " + std::to_string(z[j]) + ")");
   }
   std::vector<std::size_t> start(nbins + 1, 0);
   for (std::size_t j = 0; j < m; ++j) ++start[bin_[j] + 1];

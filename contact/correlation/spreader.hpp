@@ -32,7 +32,8 @@ class Spreader {
   Spreader(std::array<int, 3> fine, const KernelSpec& kernel, int threads, int max_subproblem);
 
   // Folds and sorts the M points (radians, 2pi-periodic). The arrays may be
-  // discarded after the call.
+  // discarded after the call. Throws std::invalid_argument (naming the first
+  // such point) if a coordinate is NaN or infinite; the previous points stay.
   void set_points(std::span<const double> x, std::span<const double> y,
                   std::span<const double> z);
 

@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -188,6 +190,29 @@ TEST(Nufft3d, OddAndNonCubicModeCounts) {
       EXPECT_LE(e1, 1e-7) << n[0] << "x" << n[1] << "x" << n[2] << " sigma " << sigma;
       EXPECT_LE(e2, 1e-7) << n[0] << "x" << n[1] << "x" << n[2] << " sigma " << sigma;
     }
+  }
+}
+
+TEST(Nufft3d, NonFinitePointsAreRefusedAndThePlanKeepsItsPoints) {
+  const std::array<int, 3> n = {12, 10, 8};
+  const Problem p = random_problem(50, 11);
+  gc::Nufft3d plan(n, 1e-6);
+  plan.set_points(p.x, p.y, p.z);
+  std::vector<Complex> before(plan.num_modes()), after(plan.num_modes());
+  plan.type1(p.c, before, -1);
+  for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                     -std::numeric_limits<double>::infinity()}) {
+    Problem q = p;
+    q.y[37] = bad;
+    try {
+      plan.set_points(q.x, q.y, q.z);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("point 37"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(plan.num_points(), 50u);
+    plan.type1(p.c, after, -1);
+    EXPECT_EQ(before, after);  // the previous points, sorted as before
   }
 }
 
