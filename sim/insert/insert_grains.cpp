@@ -224,6 +224,11 @@ void run_fft(Job& j, const SceneGrains& scene, int threads) {
   const double core_delta = c.margin * core_s;
   const std::vector<double> core_c = {0.0, 0.0, 0.0}, core_r = {core_s + core_delta};
   const int n_orient = core_field ? 1 : (spin ? c.orientations : 1);
+  // The balls each field correlates with the scene, and the largest one's
+  // radius and margin, which set the thresholds.
+  const std::vector<double>& field_c = core_field ? core_c : shape_c;
+  const std::vector<double>& field_r = core_field ? core_r : shape_r;
+  const double field_s = core_field ? core_s : s_ref, field_delta = core_field ? core_delta : delta;
   std::size_t joined = 0;  // grains of j.out already in bx/br
   constexpr int kMaxRounds = 100;
   int idle = 0;  // consecutive rounds that placed nothing
@@ -248,22 +253,18 @@ void run_fft(Job& j, const SceneGrains& scene, int threads) {
     const double r0 = std::isfinite(scene_rmin) ? scene_rmin : s_ref;
     for (std::size_t i = 0; i < br.size(); ++i) add_ball(sb, bx[i], round_up_radius(br[i], r0), reach, j.domain, lo, hi);
     // Threshold: half the smallest lens a touching grain makes once inflated.
-    const double threshold = 0.5 * gc::lens_volume(r0 + s_ref, r0, s_ref + delta);
+    const double threshold = 0.5 * gc::lens_volume(r0 + field_s, r0, field_s + field_delta);
     // A free position off the nodes: the nearest node is within h sqrt(3)/2,
     // where the inflated grain penetrates each neighbour by at most
     // delta + h sqrt(3)/2; with up to kNear such neighbours V stays below this.
     constexpr double kNear = 4;
     constexpr int kTrialsPerCell = 4;
-    const double threshold_near = kNear * gc::lens_volume(r0 + s_ref, r0, s_ref + delta + 0.5 * std::sqrt(3.0) * h);
+    const double threshold_near =
+        kNear * gc::lens_volume(r0 + field_s, r0, field_s + field_delta + 0.5 * std::sqrt(3.0) * h);
     orient.clear();
     for (int k = 0; k < n_orient; ++k) orient.push_back(spin ? uniform_rotation(j.rng) : j.orientation());
     // The orientation of a trial at a node of field k.
     auto trial_orientation = [&](std::size_t k) { return core_field ? uniform_rotation(j.rng) : orient[k]; };
-    const double core_threshold = 0.5 * gc::lens_volume(r0 + core_s, r0, core_s + core_delta);
-    const double core_threshold_near =
-        kNear * gc::lens_volume(r0 + core_s, r0, core_s + core_delta + 0.5 * std::sqrt(3.0) * h);
-    const double t_free = core_field ? core_threshold : threshold;
-    const double t_near = core_field ? core_threshold_near : threshold_near;
     // Trials per free node: the core's nodes draw the orientation each time.
     const int node_trials = core_field ? kTrialsPerCell : 1;
     const std::size_t before = j.out.size();
@@ -287,12 +288,12 @@ void run_fft(Job& j, const SceneGrains& scene, int threads) {
         std::array<double, 9> rm;
         for (int a = 0; a < 3; ++a)
           for (int b = 0; b < 3; ++b) rm[3 * a + b] = R(a, b);
-        field = core_field ? ov->field(gc::BallSet{core_c, core_r}, rm) : ov->field(gc::BallSet{shape_c, shape_r}, rm);
+        field = ov->field(gc::BallSet{field_c, field_r}, rm);
         ++j.st.fields;
         for (std::size_t n = 0; n < field.size(); ++n)
-          if (field[n] <= t_free)
+          if (field[n] <= threshold)
             cand.push_back(static_cast<std::uint32_t>(n));
-          else if (field[n] <= t_near)
+          else if (field[n] <= threshold_near)
             near.push_back(static_cast<std::uint32_t>(n));
       }
       j.st.field_seconds += since(tf);
