@@ -93,14 +93,13 @@ HeadlessDisplay::HeadlessDisplay() {
     throw std::runtime_error("no X display: Xvfb started on " + display_ + " but no client could connect to it");
   }
   if (const char* d = std::getenv("DISPLAY")) previous_ = d;
-  had_previous_ = std::getenv("DISPLAY") != nullptr;
   setenv("DISPLAY", display_.c_str(), 1);
 }
 
 HeadlessDisplay::~HeadlessDisplay() {
   if (pid_ <= 0) return;
-  if (had_previous_)
-    setenv("DISPLAY", previous_.c_str(), 1);
+  if (previous_)
+    setenv("DISPLAY", previous_->c_str(), 1);
   else
     unsetenv("DISPLAY");
   kill(pid_, SIGTERM);

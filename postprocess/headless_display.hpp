@@ -5,6 +5,7 @@
 // and points DISPLAY at it until the guard is destroyed (then restores it).
 // VTK aborts the process when it cannot open its display; this guard throws
 // instead.
+#include <optional>
 #include <string>
 #include <sys/types.h>
 
@@ -26,8 +27,7 @@ class HeadlessDisplay {
  private:
   std::string display_;
   pid_t pid_ = -1;
-  std::string previous_;  // DISPLAY before this guard replaced it
-  bool had_previous_ = false;
+  std::optional<std::string> previous_;  // DISPLAY before this guard replaced it
 };
 
 }  // namespace grains::postprocess

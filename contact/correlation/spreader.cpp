@@ -133,7 +133,8 @@ void Spreader::set_points(std::span<const double> x, std::span<const double> y, 
     std::size_t j = 0;
     while (std::isfinite(x[j]) && std::isfinite(y[j]) && std::isfinite(z[j])) ++j;
     throw std::invalid_argument("set_points: point " + std::to_string(j) + " has a non-finite coordinate (" +
-                                std::to_string(x[j]) + ", " + std::to_string(y[j]) + ", " + std::to_string(z[j]) + ")");
+                                std::to_string(x[j]) + ", " + std::to_string(y[j]) + ", " + std::to_string(z[j]) +
+                                "); coordinates must be finite (radians, any real value)");
   }
   std::vector<std::size_t> start(nbins + 1, 0);
   for (std::size_t j = 0; j < m; ++j) ++start[bin_[j] + 1];
