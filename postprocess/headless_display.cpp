@@ -90,7 +90,8 @@ HeadlessDisplay::HeadlessDisplay() {
     int status = 0;
     waitpid(pid_, &status, 0);
     pid_ = -1;
-    throw std::runtime_error("no X display: Xvfb started on " + display_ + " but no client could connect to it");
+    throw std::runtime_error("no X display: Xvfb started on " + display_ +
+                             " but no client could connect to it within 5 s; set DISPLAY to a reachable X server");
   }
   if (const char* d = std::getenv("DISPLAY")) previous_ = d;
   setenv("DISPLAY", display_.c_str(), 1);
