@@ -50,7 +50,10 @@ HeadlessDisplay::HeadlessDisplay() {
       dup2(null, STDOUT_FILENO);
       dup2(null, STDERR_FILENO);
     }
-    execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "1920x1200x24", "-nolisten", "tcp",
+    // -noreset: an X server resets when its last client disconnects, and
+    // connections made meanwhile fail (VTK then aborts); the check below
+    // connects and disconnects right before VTK connects.
+    execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "1920x1200x24", "-nolisten", "tcp", "-noreset",
            static_cast<char*>(nullptr));
     _exit(127);
   }
