@@ -1,5 +1,7 @@
 #include "contact/correlation/fftw_util.hpp"
 
+#include "contact/correlation/huge_pages.hpp"
+
 #include <cstring>
 #include <new>
 #include <stdexcept>
@@ -20,13 +22,12 @@ void fftw_threads_init_once() {
 
 FftwBuffer::FftwBuffer(std::size_t n_doubles) : n_(n_doubles) {
   if (n_ == 0) return;
-  p_ = static_cast<double*>(fftw_malloc(n_ * sizeof(double)));
-  if (!p_) throw std::bad_alloc();
+  p_ = static_cast<double*>(allocate_large(n_ * sizeof(double)));  // FFTW needs 16/32-byte alignment: 64 or more
   zero();
 }
 
 FftwBuffer::~FftwBuffer() {
-  if (p_) fftw_free(p_);
+  free_large(p_);
 }
 
 FftwBuffer::FftwBuffer(FftwBuffer&& o) noexcept : p_(o.p_), n_(o.n_) {
@@ -36,7 +37,7 @@ FftwBuffer::FftwBuffer(FftwBuffer&& o) noexcept : p_(o.p_), n_(o.n_) {
 
 FftwBuffer& FftwBuffer::operator=(FftwBuffer&& o) noexcept {
   if (this != &o) {
-    if (p_) fftw_free(p_);
+    free_large(p_);
     p_ = o.p_;
     n_ = o.n_;
     o.p_ = nullptr;

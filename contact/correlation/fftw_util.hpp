@@ -16,7 +16,8 @@ std::mutex& fftw_planner_mutex();
 // Calls fftw_init_threads() once per process.
 void fftw_threads_init_once();
 
-// Aligned array of doubles from fftw_malloc, zero-initialised.
+// Aligned array of doubles (huge pages when large: huge_pages.hpp),
+// zero-initialised.
 class FftwBuffer {
  public:
   FftwBuffer() = default;

@@ -22,6 +22,7 @@
 #include <span>
 #include <vector>
 
+#include "contact/correlation/huge_pages.hpp"
 #include "contact/correlation/spreading_kernel.hpp"
 #include "contact/correlation/spreader_kernels.hpp"
 
@@ -56,9 +57,8 @@ class Spreader {
   int max_sub_;
   std::vector<std::size_t> sub_begin_;       // subproblem boundaries (size + 1)
   std::vector<std::size_t> slab_sub_;        // first subproblem of each z-slab (size + 1)
-  std::vector<std::uint32_t> bin_;           // set_points scratch (kept: no page faults on reuse)
-  std::vector<detail::SortedPoint> points_;  // sorted fine-grid coordinates + caller index
-  mutable std::vector<double> strengths_;    // spread scratch: strengths in sorted order
+  std::vector<std::uint32_t, LargeAllocator<std::uint32_t>> bin_;          // set_points scratch (kept: no page faults on reuse)
+  std::vector<detail::SortedPoint, LargeAllocator<detail::SortedPoint>> points_; // sorted fine-grid coordinates + caller index
 };
 
 }  // namespace grains::correlation

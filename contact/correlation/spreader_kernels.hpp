@@ -24,7 +24,7 @@ struct SortedPoint {
 struct SpreadTask {
   const KernelPolynomial* kernel;
   const SortedPoint* pts;
-  const double* c;  // strengths in sorted order, nc per point
+  const double* c;  // strengths, nc per point, in the caller's order (pts[s].index)
   std::size_t begin, end;
   int lo[3];
   int s0, s1;
