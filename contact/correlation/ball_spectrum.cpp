@@ -26,6 +26,35 @@ namespace {
 
 inline int pmod(int a, int n) { return ((a % n) + n) % n; }
 
+// B_hat(|k|, r) at the modes |m_d| <= K_d of a box. In a cubic box |k|
+// depends on m0^2 + m1^2 + m2^2 alone: one sine and cosine per distinct
+// value (3 K^2 + 1 of them) instead of one per mode ((2K + 1)^3 / 2), the
+// same numbers to rounding. Other boxes evaluate per mode.
+class RadialTransform {
+ public:
+  RadialTransform(const PeriodicBox& box, std::array<int, 3> K, double r) : r_(r) {
+    for (int d = 0; d < 3; ++d) kw_[d] = 2.0 * std::numbers::pi / box.period[d];
+    cubic_ = box.period[0] == box.period[1] && box.period[1] == box.period[2];
+    if (!cubic_) return;
+    const std::size_t nmax = static_cast<std::size_t>(K[0]) * K[0] + static_cast<std::size_t>(K[1]) * K[1] +
+                             static_cast<std::size_t>(K[2]) * K[2];
+    table_.resize(nmax + 1);
+    for (std::size_t n = 0; n <= nmax; ++n)
+      table_[n] = ball_indicator_transform(kw_[0] * std::sqrt(static_cast<double>(n)), r);
+  }
+  double operator()(int m0, int m1, int m2) const {
+    if (cubic_) return table_[static_cast<std::size_t>(m0 * m0 + m1 * m1 + m2 * m2)];
+    const double k2 = kw_[0] * kw_[0] * m0 * m0 + kw_[1] * kw_[1] * m1 * m1 + kw_[2] * kw_[2] * m2 * m2;
+    return ball_indicator_transform(std::sqrt(k2), r_);
+  }
+
+ private:
+  double r_;
+  std::array<double, 3> kw_{};
+  bool cubic_ = false;
+  std::vector<double> table_;
+};
+
 }  // namespace
 
 HalfSpectrum ball_spectrum(const BallSet& balls, const PeriodicBox& box,
@@ -66,13 +95,11 @@ HalfSpectrum ball_spectrum(const BallSet& balls, const PeriodicBox& box,
   FftwBuffer spec(2 * static_cast<std::size_t>(h0) * fine[1] * fine[2]);
   FftwPlan plan = plan_r2c_3d(fine, grid.data(), spec.as_complex(), threads, FFTW_ESTIMATE);
 
-  // 1 / psi_hat per axis for |m| <= K, and the wavenumbers.
-  std::array<std::vector<double>, 3> deconv, kw;
+  // 1 / psi_hat per axis for |m| <= K.
+  std::array<std::vector<double>, 3> deconv;
   for (int d = 0; d < 3; ++d) {
     deconv[d] = kernel_fourier_series(kernel, fine[d], max_mode[d]);
     for (double& v : deconv[d]) v = 1.0 / v;
-    kw[d].resize(max_mode[d] + 1);
-    for (int m = 0; m <= max_mode[d]; ++m) kw[d][m] = 2.0 * std::numbers::pi * m / box.period[d];
   }
 
   const std::array<int, 3> K = max_mode;
@@ -93,20 +120,16 @@ HalfSpectrum ball_spectrum(const BallSet& balls, const PeriodicBox& box,
     grid.zero();
     spreader.spread(w.data(), 1, grid.data());
     plan.execute();
+    const RadialTransform bt(box, K, r);
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (int m2 = -K[2]; m2 <= K[2]; ++m2) {
       const int g2 = pmod(m2, fine[2]);
       for (int m1 = -K[1]; m1 <= K[1]; ++m1) {
         const int g1 = pmod(m1, fine[1]);
         const double d12 = deconv[2][std::abs(m2)] * deconv[1][std::abs(m1)];
-        const double k12 = kw[2][std::abs(m2)] * kw[2][std::abs(m2)] +
-                           kw[1][std::abs(m1)] * kw[1][std::abs(m1)];
         const std::complex<double>* row = s + (static_cast<std::size_t>(g2) * fine[1] + g1) * h0;
         std::complex<double>* o = &out(0, m1, m2);
-        for (int m0 = 0; m0 <= K[0]; ++m0) {
-          const double k = std::sqrt(k12 + kw[0][m0] * kw[0][m0]);
-          o[m0] += row[m0] * (d12 * deconv[0][m0] * ball_indicator_transform(k, r));
-        }
+        for (int m0 = 0; m0 <= K[0]; ++m0) o[m0] += row[m0] * (d12 * deconv[0][m0] * bt(m0, m1, m2));
       }
     }
   }
@@ -132,21 +155,30 @@ HalfSpectrum ball_spectrum_direct(const BallSet& balls, const PeriodicBox& box, 
         ph[d][i * w + static_cast<std::size_t>(m + K[d])] = (d == 0 ? balls.weight(i) : 1.0) * std::polar(1.0, -a * m);
     }
   }
-  std::array<double, 3> kw;
-  for (int d = 0; d < 3; ++d) kw[d] = 2.0 * std::numbers::pi / box.period[d];
+  // One transform per distinct radius (a grain's balls often share theirs).
+  std::vector<RadialTransform> bt;
+  std::vector<std::size_t> bt_of(n);
+  std::vector<double> bt_r;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto it = std::find(bt_r.begin(), bt_r.end(), balls.radii[i]);
+    bt_of[i] = static_cast<std::size_t>(it - bt_r.begin());
+    if (it == bt_r.end()) {
+      bt_r.push_back(balls.radii[i]);
+      bt.emplace_back(box, K, balls.radii[i]);
+    }
+  }
   const std::size_t w0 = 2 * static_cast<std::size_t>(K[0]) + 1, w1 = 2 * static_cast<std::size_t>(K[1]) + 1,
                     w2 = 2 * static_cast<std::size_t>(K[2]) + 1;
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (int m2 = -K[2]; m2 <= K[2]; ++m2)
     for (int m1 = -K[1]; m1 <= K[1]; ++m1) {
       std::complex<double>* o = &out(0, m1, m2);
-      const double k12 = kw[1] * kw[1] * m1 * m1 + kw[2] * kw[2] * m2 * m2;
       for (std::size_t i = 0; i < n; ++i) {
         const std::complex<double> p12 =
             ph[1][i * w1 + static_cast<std::size_t>(m1 + K[1])] * ph[2][i * w2 + static_cast<std::size_t>(m2 + K[2])];
         const std::complex<double>* p0 = &ph[0][i * w0 + static_cast<std::size_t>(K[0])];
-        for (int m0 = 0; m0 <= K[0]; ++m0)
-          o[m0] += p0[m0] * p12 * ball_indicator_transform(std::sqrt(k12 + kw[0] * kw[0] * m0 * m0), balls.radii[i]);
+        const RadialTransform& b = bt[bt_of[i]];
+        for (int m0 = 0; m0 <= K[0]; ++m0) o[m0] += p0[m0] * p12 * b(m0, m1, m2);
       }
     }
   return out;
@@ -159,7 +191,7 @@ std::vector<double> synthesize_on_grid(const HalfSpectrum& h, std::array<int, 3>
   const std::array<int, 3> K = h.max_mode();
   const int t0 = T[0] / 2 + 1;
   FftwBuffer g(2 * static_cast<std::size_t>(t0) * T[1] * T[2]);
-  FftwBuffer out(static_cast<std::size_t>(T[0]) * T[1] * T[2]);
+  std::vector<double> out(static_cast<std::size_t>(T[0]) * T[1] * T[2]);  // FFTW plans for its alignment
   std::complex<double>* G = reinterpret_cast<std::complex<double>*>(g.data());
   // Fold every mode of the box |m_d| <= K_d onto the grid's half spectrum.
   // Parallel over target planes (m2 mod T2) so that no two threads add to the
@@ -180,7 +212,7 @@ std::vector<double> synthesize_on_grid(const HalfSpectrum& h, std::array<int, 3>
   }
   FftwPlan plan = plan_c2r_3d(T, g.as_complex(), out.data(), threads, FFTW_ESTIMATE);
   plan.execute();
-  return std::vector<double>(out.data(), out.data() + out.size());
+  return out;
 }
 
 std::vector<double> crop_nodes(const std::vector<double>& full, std::array<int, 3> T,

@@ -114,13 +114,13 @@ std::vector<double> SceneOverlap::field(const BallSet& shape, const std::array<d
   // A grain's few balls: summed directly (exact, and cheaper than a
   // spreading pass and a fine-grid FFT per radius); many balls: the NUFFT.
   const BallSet rotated{rc, shape.radii, shape.weights};
-  const HalfSpectrum gs = shape.size() <= 64 ? ball_spectrum_direct(rotated, shape_box, info_.max_mode, opt_.threads)
-                                             : ball_spectrum(rotated, shape_box, info_.max_mode, so);
-  HalfSpectrum prod = scene_;
+  HalfSpectrum prod = shape.size() <= 64 ? ball_spectrum_direct(rotated, shape_box, info_.max_mode, opt_.threads)
+                                         : ball_spectrum(rotated, shape_box, info_.max_mode, so);
+  // The correlation's spectrum in place of the shape's (no copy of the scene's).
   const double inv_vol = 1.0 / box_.volume();
   auto& a = prod.data();
-  const auto& b = gs.data();
-  for (std::size_t q = 0; q < a.size(); ++q) a[q] *= std::conj(b[q]) * inv_vol;
+  const auto& b = scene_.data();
+  for (std::size_t q = 0; q < a.size(); ++q) a[q] = b[q] * std::conj(a[q]) * inv_vol;
   return crop_nodes(synthesize_on_grid(prod, info_.fft_nodes, opt_.threads), info_.fft_nodes, grid_.dims);
 }
 
