@@ -89,11 +89,11 @@ HalfSpectrum ball_spectrum(const BallSet& balls, const PeriodicBox& box,
   if (ncls == 0) return out;
 
   Spreader spreader(fine, kernel, threads, 10000);
-  const std::size_t nreal = static_cast<std::size_t>(fine[0]) * fine[1] * fine[2];
+  // One array for the real grid and its half spectrum: an in-place real FFT,
+  // the real rows padded to 2 h0 values (half the memory of two arrays).
   const int h0 = fine[0] / 2 + 1;
-  FftwBuffer grid(nreal);
   FftwBuffer spec(2 * static_cast<std::size_t>(h0) * fine[1] * fine[2]);
-  FftwPlan plan = plan_r2c_3d(fine, grid.data(), spec.as_complex(), threads, FFTW_ESTIMATE);
+  FftwPlan plan = plan_r2c_3d(fine, spec.data(), spec.as_complex(), threads, FFTW_ESTIMATE);
 
   // 1 / psi_hat per axis for |m| <= K.
   std::array<std::vector<double>, 3> deconv;
@@ -117,8 +117,8 @@ HalfSpectrum ball_spectrum(const BallSet& balls, const PeriodicBox& box,
       w.push_back(balls.weight(i));
     }
     spreader.set_points(x, y, z);
-    grid.zero();
-    spreader.spread(w.data(), 1, grid.data());
+    spec.zero();
+    spreader.spread(w.data(), 1, spec.data(), 2 * static_cast<std::size_t>(h0));
     plan.execute();
     const RadialTransform bt(box, K, r);
 #pragma omp parallel for num_threads(threads) schedule(static)

@@ -62,8 +62,10 @@ class FftwPlan {
 FftwPlan plan_c2c_3d(std::array<int, 3> n, fftw_complex* data, int sign, int threads,
                      unsigned flags);
 
-// Real-to-complex / complex-to-real 3D DFT (out of place) on an x-fastest grid;
-// the half spectrum has (n[0]/2 + 1) x n[1] x n[2] entries.
+// Real-to-complex / complex-to-real 3D DFT on an x-fastest grid; the half
+// spectrum has (n[0]/2 + 1) x n[1] x n[2] entries. In place when the two
+// pointers are the same array: the real rows are then padded to
+// 2 (n[0]/2 + 1) values (FFTW's in-place layout).
 FftwPlan plan_r2c_3d(std::array<int, 3> n, double* in, fftw_complex* out, int threads,
                      unsigned flags);
 FftwPlan plan_c2r_3d(std::array<int, 3> n, fftw_complex* in, double* out, int threads,

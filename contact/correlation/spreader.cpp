@@ -172,12 +172,14 @@ void Spreader::set_points(std::span<const double> x, std::span<const double> y, 
         static_cast<std::int64_t>(j)};
 }
 
-void Spreader::spread(const double* c, int nc, double* grid) const {
+void Spreader::spread(const double* c, int nc, double* grid, std::size_t pitch) const {
   if (nc != 1 && nc != 2) throw std::invalid_argument("Spreader::spread: nc must be 1 or 2");
   const std::int64_t nsub = static_cast<std::int64_t>(sub_begin_.size()) - 1;
   if (nsub <= 0) return;
   const int w = poly_.spec.width;
   const int n0 = fine_[0], n1 = fine_[1], n2 = fine_[2];
+  const std::size_t row_pitch = pitch == 0 ? static_cast<std::size_t>(n0) : pitch;
+  if (row_pitch < static_cast<std::size_t>(n0)) throw std::invalid_argument("Spreader::spread: pitch shorter than a row");
 
   // Strengths are read in the caller's order inside the spreading loop, each
   // prefetched a few points ahead (spreader_kernels.inc): the random reads
@@ -223,7 +225,7 @@ void Spreader::spread(const double* c, int nc, double* grid) const {
             const int gz = ((lo[2] + zz) % n2 + n2) % n2;
             for (int yy = 0; yy < s1; ++yy) {
               const int gy = ((lo[1] + yy) % n1 + n1) % n1;
-              double* grow = grid + NC * ((static_cast<std::size_t>(gz) * n1 + gy) * n0);
+              double* grow = grid + NC * ((static_cast<std::size_t>(gz) * n1 + gy) * row_pitch);
               const double* srow = sub.data() + NC * ((static_cast<std::size_t>(zz) * s1 + yy) * s0);
               for (int i = 0, gx = x0; i < s0;) {
                 const int len = std::min(s0 - i, n0 - gx);

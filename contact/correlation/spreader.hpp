@@ -39,8 +39,10 @@ class Spreader {
                   std::span<const double> z);
 
   // grid (fine, x fastest, nc doubles per cell) += spread of c (nc doubles per
-  // point, in the caller's point order). The grid is not cleared.
-  void spread(const double* c, int nc, double* grid) const;
+  // point, in the caller's point order). The grid is not cleared. Its x-rows
+  // are `pitch` cells apart (0: n0; e.g. the padded rows of an in-place
+  // real-to-complex FFT).
+  void spread(const double* c, int nc, double* grid, std::size_t pitch = 0) const;
 
   // c[j] = sum over the kernel footprint of point j of psi * grid (complex).
   void interpolate(const double* grid, double* c) const;
