@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -11,6 +12,7 @@
 #include "contact/correlation/ball_kernels.hpp"
 #include "contact/correlation/fftw_util.hpp"
 #include "contact/correlation/nufft3d.hpp"
+#include "contact/correlation/pruned_fft.hpp"
 #include "contact/correlation/spreader.hpp"
 
 namespace grains::correlation {
@@ -93,7 +95,7 @@ HalfSpectrum ball_spectrum(const BallSet& balls, const PeriodicBox& box,
   // the real rows padded to 2 h0 values (half the memory of two arrays).
   const int h0 = fine[0] / 2 + 1;
   FftwBuffer spec(2 * static_cast<std::size_t>(h0) * fine[1] * fine[2]);
-  FftwPlan plan = plan_r2c_3d(fine, spec.data(), spec.as_complex(), threads, FFTW_ESTIMATE);
+  PrunedRealFft3d fft(fine, max_mode, spec.data(), threads, FFTW_ESTIMATE);
 
   // 1 / psi_hat per axis for |m| <= K.
   std::array<std::vector<double>, 3> deconv;
@@ -119,7 +121,7 @@ HalfSpectrum ball_spectrum(const BallSet& balls, const PeriodicBox& box,
     spreader.set_points(x, y, z);
     spec.zero();
     spreader.spread(w.data(), 1, spec.data(), 2 * static_cast<std::size_t>(h0));
-    plan.execute();
+    fft.forward(spec.data());
     const RadialTransform bt(box, K, r);
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (int m2 = -K[2]; m2 <= K[2]; ++m2) {
@@ -191,7 +193,7 @@ std::vector<double> synthesize_on_grid(const HalfSpectrum& h, std::array<int, 3>
   const std::array<int, 3> K = h.max_mode();
   const int t0 = T[0] / 2 + 1;
   FftwBuffer g(2 * static_cast<std::size_t>(t0) * T[1] * T[2]);
-  std::vector<double> out(static_cast<std::size_t>(T[0]) * T[1] * T[2]);  // FFTW plans for its alignment
+
   std::complex<double>* G = reinterpret_cast<std::complex<double>*>(g.data());
   // Fold every mode of the box |m_d| <= K_d onto the grid's half spectrum.
   // Parallel over target planes (m2 mod T2) so that no two threads add to the
@@ -210,8 +212,16 @@ std::vector<double> synthesize_on_grid(const HalfSpectrum& h, std::array<int, 3>
       }
     }
   }
-  FftwPlan plan = plan_c2r_3d(T, g.as_complex(), out.data(), threads, FFTW_ESTIMATE);
-  plan.execute();
+  // In place (g's rows are the padded real rows of the result); only the
+  // folded modes' lines are transformed along y and z.
+  const std::array<int, 3> kf{std::min(K[0], t0 - 1), K[1], K[2]};
+  PrunedRealFft3d fft(T, kf, g.data(), threads, FFTW_ESTIMATE);
+  fft.backward(g.data());
+  std::vector<double> out(static_cast<std::size_t>(T[0]) * T[1] * T[2]);
+  const std::size_t rows = static_cast<std::size_t>(T[1]) * T[2];
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t r = 0; r < static_cast<std::int64_t>(rows); ++r)
+    std::copy_n(g.data() + 2 * static_cast<std::size_t>(t0) * r, T[0], out.data() + static_cast<std::size_t>(T[0]) * r);
   return out;
 }
 

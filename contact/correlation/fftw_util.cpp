@@ -86,26 +86,6 @@ FftwPlan plan_c2c_3d(std::array<int, 3> n, fftw_complex* data, int sign, int thr
   return FftwPlan(p);
 }
 
-FftwPlan plan_r2c_3d(std::array<int, 3> n, double* in, fftw_complex* out, int threads,
-                     unsigned flags) {
-  fftw_threads_init_once();
-  std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-  fftw_plan_with_nthreads(threads);
-  fftw_plan p = fftw_plan_dft_r2c_3d(n[2], n[1], n[0], in, out, flags);
-  check(p);
-  return FftwPlan(p);
-}
-
-FftwPlan plan_c2r_3d(std::array<int, 3> n, fftw_complex* in, double* out, int threads,
-                     unsigned flags) {
-  fftw_threads_init_once();
-  std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-  fftw_plan_with_nthreads(threads);
-  fftw_plan p = fftw_plan_dft_c2r_3d(n[2], n[1], n[0], in, out, flags);
-  check(p);
-  return FftwPlan(p);
-}
-
 int next_fft_size(int n) {
   if (n <= 2) return 2;
   for (int m = n + (n & 1);; m += 2) {

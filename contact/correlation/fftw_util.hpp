@@ -52,6 +52,7 @@ class FftwPlan {
   explicit operator bool() const { return p_ != nullptr; }
   void execute() const { fftw_execute(p_); }
   void execute_dft(fftw_complex* in, fftw_complex* out) const { fftw_execute_dft(p_, in, out); }
+  fftw_plan get() const { return p_; }
 
  private:
   fftw_plan p_ = nullptr;
@@ -60,15 +61,6 @@ class FftwPlan {
 // In-place complex 3D DFT on an x-fastest grid n[0] x n[1] x n[2] with the
 // given exponent sign (-1: FFTW_FORWARD, +1: FFTW_BACKWARD).
 FftwPlan plan_c2c_3d(std::array<int, 3> n, fftw_complex* data, int sign, int threads,
-                     unsigned flags);
-
-// Real-to-complex / complex-to-real 3D DFT on an x-fastest grid; the half
-// spectrum has (n[0]/2 + 1) x n[1] x n[2] entries. In place when the two
-// pointers are the same array: the real rows are then padded to
-// 2 (n[0]/2 + 1) values (FFTW's in-place layout).
-FftwPlan plan_r2c_3d(std::array<int, 3> n, double* in, fftw_complex* out, int threads,
-                     unsigned flags);
-FftwPlan plan_c2r_3d(std::array<int, 3> n, fftw_complex* in, double* out, int threads,
                      unsigned flags);
 
 // Smallest even size >= n whose only prime factors are 2, 3 and 5.

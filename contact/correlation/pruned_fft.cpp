@@ -132,4 +132,80 @@ void PrunedFft3d::backward_pruned(fftw_complex* grid, int sign) {
   stage_x(g, sign);
 }
 
+PrunedRealFft3d::PrunedRealFft3d(std::array<int, 3> n, std::array<int, 3> K, double* data, int threads,
+                                 unsigned flags)
+    : n_(n), h0_(n[0] / 2 + 1), threads_(std::max(1, threads)) {
+  for (int d = 0; d < 3; ++d)
+    if (n_[d] < 1 || K[d] < 0) throw std::invalid_argument("PrunedRealFft3d: need n_d >= 1 and K_d >= 0");
+  for (int i = 0; i <= std::min(K[0], h0_ - 1); ++i) xs_.push_back(i);
+  for (int m = -std::min(K[1], n_[1]); m <= std::min(K[1], n_[1]); ++m) ys_.push_back(((m % n_[1]) + n_[1]) % n_[1]);
+  std::sort(ys_.begin(), ys_.end());
+  ys_.erase(std::unique(ys_.begin(), ys_.end()), ys_.end());
+  const int lines = static_cast<int>(xs_.size());
+  const std::size_t buf_len = 2 * static_cast<std::size_t>(lines) * std::max(n_[1], n_[2]);
+  for (int t = 0; t < threads_; ++t) buf_.emplace_back(buf_len);
+  fftw_threads_init_once();
+  std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+  fftw_plan_with_nthreads(1);  // the stages are parallel over planes
+  // x: the n1 rows of one plane, in place (real rows 2 h0 doubles apart).
+  int len = n_[0];
+  auto* cdata = reinterpret_cast<fftw_complex*>(data);
+  fftw_plan r = fftw_plan_many_dft_r2c(1, &len, n_[1], data, nullptr, 1, 2 * h0_, cdata, nullptr, 1, h0_, flags);
+  fftw_plan c = fftw_plan_many_dft_c2r(1, &len, n_[1], cdata, nullptr, 1, h0_, data, nullptr, 1, 2 * h0_, flags);
+  if (!r || !c) throw std::runtime_error("FFTW could not create a plan");
+  rx_ = FftwPlan(r);
+  cx_ = FftwPlan(c);
+  for (int s = 0; s < 2; ++s) {
+    const int sign = s == 0 ? FFTW_FORWARD : FFTW_BACKWARD;
+    py_[s] = FftwPlan(plan_lines(n_[1], lines, n_[1], buf_[0].as_complex(), sign, flags));
+    pz_[s] = FftwPlan(plan_lines(n_[2], lines, n_[2], buf_[0].as_complex(), sign, flags));
+  }
+}
+
+void PrunedRealFft3d::stage_y(Complex* g, int s) {
+  const std::size_t plane = static_cast<std::size_t>(h0_) * n_[1];
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (int z = 0; z < n_[2]; ++z) {
+    FftwBuffer& b = buf_[omp_get_thread_num()];
+    auto* bc = reinterpret_cast<Complex*>(b.data());
+    gather(g + z * plane, h0_, n_[1], xs_, bc);
+    py_[s].execute_dft(b.as_complex(), b.as_complex());
+    scatter(bc, h0_, n_[1], xs_, g + z * plane);
+  }
+}
+
+void PrunedRealFft3d::stage_z(Complex* g, int s) {
+  const std::size_t plane = static_cast<std::size_t>(h0_) * n_[1];
+  const int ny = static_cast<int>(ys_.size());
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (int j = 0; j < ny; ++j) {
+    FftwBuffer& b = buf_[omp_get_thread_num()];
+    auto* bc = reinterpret_cast<Complex*>(b.data());
+    Complex* base = g + static_cast<std::size_t>(ys_[j]) * h0_;
+    gather(base, plane, n_[2], xs_, bc);
+    pz_[s].execute_dft(b.as_complex(), b.as_complex());
+    scatter(bc, plane, n_[2], xs_, base);
+  }
+}
+
+void PrunedRealFft3d::forward(double* data) {
+  const std::size_t plane = 2 * static_cast<std::size_t>(h0_) * n_[1];
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (int z = 0; z < n_[2]; ++z)
+    fftw_execute_dft_r2c(rx_.get(), data + z * plane, reinterpret_cast<fftw_complex*>(data + z * plane));
+  Complex* g = reinterpret_cast<Complex*>(data);
+  stage_y(g, 0);
+  stage_z(g, 0);
+}
+
+void PrunedRealFft3d::backward(double* data) {
+  Complex* g = reinterpret_cast<Complex*>(data);
+  stage_z(g, 1);
+  stage_y(g, 1);
+  const std::size_t plane = 2 * static_cast<std::size_t>(h0_) * n_[1];
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (int z = 0; z < n_[2]; ++z)
+    fftw_execute_dft_c2r(cx_.get(), reinterpret_cast<fftw_complex*>(data + z * plane), data + z * plane);
+}
+
 }  // namespace grains::correlation

@@ -55,4 +55,39 @@ class PrunedFft3d {
   std::vector<FftwBuffer> buf_;        // one per thread: N0 lines of max(n1, n2)
 };
 
+// The real-to-complex 3D FFT of the ball spectra and the complex-to-real one
+// of field synthesis, in FFTW's in-place layout (x fastest, each real row
+// padded to 2 h0 doubles, h0 = n0/2 + 1; after the forward transform row
+// (y, z) holds the complex modes m0 = 0 .. h0-1), as stages of batched 1D
+// FFTs like PrunedFft3d: x on every row, y only on the columns m0 <= K0 of
+// every plane, z only on the (m0 <= K0, |m1| <= K1) columns. Measured against
+// one FFTW_ESTIMATE 3D plan: bench/RESULTS.md.
+class PrunedRealFft3d {
+ public:
+  // n: the real grid; K: the modes needed per axis (m0 in [0, K0], |m_d| <= K_d
+  // for d = 1, 2; modes past a grid's Nyquist are folded by the caller).
+  // `data` (2 h0 n1 n2 doubles) is used for planning only.
+  PrunedRealFft3d(std::array<int, 3> n, std::array<int, 3> K, double* data, int threads, unsigned flags);
+
+  // Real grid -> half spectrum, exponent sign -1; only the needed modes are
+  // correct afterwards.
+  void forward(double* data);
+  // Half spectrum -> real grid, exponent sign +1, unnormalised; the input must
+  // be zero outside the needed modes.
+  void backward(double* data);
+
+ private:
+  using Complex = std::complex<double>;
+  void stage_y(Complex* g, int s);
+  void stage_z(Complex* g, int s);
+
+  std::array<int, 3> n_;
+  int h0_;
+  int threads_;
+  std::vector<int> xs_, ys_;      // needed complex columns in x and y
+  FftwPlan rx_, cx_;              // rows: r2c, c2r
+  FftwPlan py_[2], pz_[2];        // [0]: sign -1, [1]: sign +1
+  std::vector<FftwBuffer> buf_;   // one per thread
+};
+
 }  // namespace grains::correlation

@@ -317,3 +317,70 @@ TEST(PrunedFft3d, MatchesTheFullTransformWhereItIsNeeded) {
     }
   }
 }
+
+TEST(PrunedRealFft3d, MatchesTheFullRealTransformWhereItIsNeeded) {
+  // Forward: the needed modes (m0 <= K0, |m1| <= K1, |m2| <= K2) of a full
+  // r2c transform; backward: the full c2r transform of a half spectrum that is
+  // zero outside them. Odd and even sizes; K1 reaching past the Nyquist.
+  const std::array<int, 3> n = {21, 16, 18}, K = {6, 9, 5};
+  const int h0 = n[0] / 2 + 1;
+  const std::size_t half = static_cast<std::size_t>(h0) * n[1] * n[2];
+  auto signed_mode = [&](int i, int d) { return i <= n[d] / 2 ? i : i - n[d]; };
+  auto needed = [&](int x, int y, int z) {
+    return x <= K[0] && std::abs(signed_mode(y, 1)) <= K[1] && std::abs(signed_mode(z, 2)) <= K[2];
+  };
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> v(-1.0, 1.0);
+  for (int threads : {1, 2}) {
+    gc::FftwBuffer data(2 * half), real(static_cast<std::size_t>(n[0]) * n[1] * n[2]), spec(2 * half);
+    gc::PrunedRealFft3d fft(n, K, data.data(), threads, FFTW_ESTIMATE);
+    gc::FftwPlan r2c(fftw_plan_dft_r2c_3d(n[2], n[1], n[0], real.data(), spec.as_complex(), FFTW_ESTIMATE));
+    gc::FftwPlan c2r(fftw_plan_dft_c2r_3d(n[2], n[1], n[0], spec.as_complex(), real.data(), FFTW_ESTIMATE));
+    ASSERT_TRUE(r2c && c2r);
+    // Forward.
+    for (int z = 0; z < n[2]; ++z)
+      for (int y = 0; y < n[1]; ++y)
+        for (int x = 0; x < n[0]; ++x) {
+          const double a = v(rng);
+          real.data()[(static_cast<std::size_t>(z) * n[1] + y) * n[0] + x] = a;
+          data.data()[(static_cast<std::size_t>(z) * n[1] + y) * 2 * h0 + x] = a;
+        }
+    fft.forward(data.data());
+    r2c.execute();
+    double err = 0.0, scale = 0.0;
+    int compared = 0;
+    for (int z = 0; z < n[2]; ++z)
+      for (int y = 0; y < n[1]; ++y)
+        for (int x = 0; x < h0; ++x) {
+          if (!needed(x, y, z)) continue;
+          const std::size_t i = (static_cast<std::size_t>(z) * n[1] + y) * h0 + x;
+          err = std::max(err, std::hypot(data.data()[2 * i] - spec.data()[2 * i],
+                                         data.data()[2 * i + 1] - spec.data()[2 * i + 1]));
+          scale = std::max(scale, std::hypot(spec.data()[2 * i], spec.data()[2 * i + 1]));
+          ++compared;
+        }
+    EXPECT_EQ(compared, (K[0] + 1) * n[1] * (2 * K[2] + 1));  // K1 covers every y mode of n1 = 16
+    EXPECT_LE(err, 1e-13 * scale) << threads << " threads, forward";
+    // Backward: a Hermitian-consistent half spectrum (the r2c of random data),
+    // zeroed outside the needed modes; FFTW's c2r of the same as reference.
+    for (std::size_t i = 0; i < half; ++i) {
+      const int x = static_cast<int>(i % h0), y = static_cast<int>((i / h0) % n[1]),
+                z = static_cast<int>(i / (static_cast<std::size_t>(h0) * n[1]));
+      if (!needed(x, y, z)) spec.data()[2 * i] = spec.data()[2 * i + 1] = 0.0;
+      data.data()[2 * i] = spec.data()[2 * i];
+      data.data()[2 * i + 1] = spec.data()[2 * i + 1];
+    }
+    fft.backward(data.data());
+    c2r.execute();
+    err = scale = 0.0;
+    for (int z = 0; z < n[2]; ++z)
+      for (int y = 0; y < n[1]; ++y)
+        for (int x = 0; x < n[0]; ++x) {
+          const double ref = real.data()[(static_cast<std::size_t>(z) * n[1] + y) * n[0] + x];
+          err = std::max(err, std::abs(data.data()[(static_cast<std::size_t>(z) * n[1] + y) * 2 * h0 + x] - ref));
+          scale = std::max(scale, std::abs(ref));
+        }
+    EXPECT_GT(scale, 1.0);
+    EXPECT_LE(err, 1e-13 * scale) << threads << " threads, backward";
+  }
+}
