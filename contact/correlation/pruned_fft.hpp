@@ -65,7 +65,9 @@ class PrunedFft3d {
 class PrunedRealFft3d {
  public:
   // n: the real grid; K: the modes needed per axis (m0 in [0, K0], |m_d| <= K_d
-  // for d = 1, 2; modes past a grid's Nyquist are folded by the caller).
+  // for d = 1, 2; modes past a grid's Nyquist are folded by the caller). K0
+  // and K1 choose the lines; every z line of a needed column is transformed
+  // whole, so K2 selects nothing.
   // `data` (2 h0 n1 n2 doubles) is used for planning only.
   PrunedRealFft3d(std::array<int, 3> n, std::array<int, 3> K, double* data, int threads, unsigned flags);
 

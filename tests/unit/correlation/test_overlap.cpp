@@ -265,3 +265,53 @@ TEST(TruncatedOverlap, ErrorDecreasesWithRetainedModes) {
               exact_overlap(a, b, gc::kIdentityRotation, {0, 0, 0}, {1e9, 1e9, 1e9}, {false, false, false}),
               0.01 * vmax);
 }
+
+namespace {
+
+// A random half spectrum of a real field: m0 = 0 Hermitian in (m1, m2).
+gc::HalfSpectrum random_half_spectrum(std::array<int, 3> K, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> v(-1.0, 1.0);
+  gc::HalfSpectrum h(K);
+  for (int m2 = -K[2]; m2 <= K[2]; ++m2)
+    for (int m1 = -K[1]; m1 <= K[1]; ++m1)
+      for (int m0 = 0; m0 <= K[0]; ++m0) h(m0, m1, m2) = {v(rng), v(rng)};
+  for (int m2 = -K[2]; m2 <= K[2]; ++m2)
+    for (int m1 = -K[1]; m1 <= K[1]; ++m1) {
+      if (m2 < 0 || (m2 == 0 && m1 < 0)) h(0, m1, m2) = std::conj(h(0, -m1, -m2));
+      if (m1 == 0 && m2 == 0) h(0, 0, 0) = {h(0, 0, 0).real(), 0.0};
+    }
+  return h;
+}
+
+}  // namespace
+
+// The field at the nodes against the sum over every mode, including grids
+// smaller than the spectrum (modes past the Nyquist fold onto their aliases)
+// and grids of one or two nodes per axis.
+TEST(SynthesizeOnGrid, MatchesTheSumOverModes) {
+  std::mt19937_64 rng(17);
+  const std::array<int, 3> K{3, 2, 4};
+  const gc::HalfSpectrum h = random_half_spectrum(K, rng);
+  for (const std::array<int, 3> T : {std::array<int, 3>{1, 2, 3}, std::array<int, 3>{5, 4, 7},
+                                     std::array<int, 3>{8, 6, 10}, std::array<int, 3>{12, 9, 16}})
+    for (int threads : {1, 2}) {
+      const std::vector<double> f = gc::synthesize_on_grid(h, T, threads);
+      ASSERT_EQ(f.size(), static_cast<std::size_t>(T[0]) * T[1] * T[2]);
+      double worst = 0.0;
+      for (int i2 = 0; i2 < T[2]; ++i2)
+        for (int i1 = 0; i1 < T[1]; ++i1)
+          for (int i0 = 0; i0 < T[0]; ++i0) {
+            std::complex<double> sum{0.0, 0.0};
+            for (int m2 = -K[2]; m2 <= K[2]; ++m2)
+              for (int m1 = -K[1]; m1 <= K[1]; ++m1)
+                for (int m0 = -K[0]; m0 <= K[0]; ++m0)
+                  sum += h.at(m0, m1, m2) *
+                         std::polar(1.0, 2 * kPi * (static_cast<double>(m0) * i0 / T[0] +
+                                                    static_cast<double>(m1) * i1 / T[1] +
+                                                    static_cast<double>(m2) * i2 / T[2]));
+            EXPECT_LT(std::abs(sum.imag()), 1e-11);
+            worst = std::max(worst, std::abs(f[(static_cast<std::size_t>(i2) * T[1] + i1) * T[0] + i0] - sum.real()));
+          }
+      EXPECT_LT(worst, 1e-11) << "T = " << T[0] << " x " << T[1] << " x " << T[2] << ", " << threads << " threads";
+    }
+}
