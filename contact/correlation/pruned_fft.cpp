@@ -56,6 +56,37 @@ fftw_plan plan_lines(int len, int howmany, int dist, fftw_complex* data, int sig
   return p;
 }
 
+// The y-stage: in every plane of a complex grid (rows `pitch` cells apart),
+// the lines along y of the columns xs, through each thread's buffer.
+void lines_along_y(std::complex<double>* g, std::array<int, 3> n, std::size_t pitch, const std::vector<int>& xs,
+                   const FftwPlan& p, std::vector<FftwBuffer>& buf, int threads) {
+  const std::size_t plane = pitch * n[1];
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int z = 0; z < n[2]; ++z) {
+    FftwBuffer& b = buf[omp_get_thread_num()];
+    auto* bc = reinterpret_cast<std::complex<double>*>(b.data());
+    gather(g + z * plane, pitch, n[1], xs, bc);
+    p.execute_dft(b.as_complex(), b.as_complex());
+    scatter(bc, pitch, n[1], xs, g + z * plane);
+  }
+}
+
+// The z-stage: the lines along z of the columns (xs, ys).
+void lines_along_z(std::complex<double>* g, std::array<int, 3> n, std::size_t pitch, const std::vector<int>& xs,
+                   const std::vector<int>& ys, const FftwPlan& p, std::vector<FftwBuffer>& buf, int threads) {
+  const std::size_t plane = pitch * n[1];
+  const int ny = static_cast<int>(ys.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int j = 0; j < ny; ++j) {
+    FftwBuffer& b = buf[omp_get_thread_num()];
+    auto* bc = reinterpret_cast<std::complex<double>*>(b.data());
+    std::complex<double>* base = g + static_cast<std::size_t>(ys[j]) * pitch;
+    gather(base, plane, n[2], xs, bc);
+    p.execute_dft(b.as_complex(), b.as_complex());
+    scatter(bc, plane, n[2], xs, base);
+  }
+}
+
 }  // namespace
 
 PrunedFft3d::PrunedFft3d(std::array<int, 3> fine, std::array<int, 3> modes, int pitch, fftw_complex* grid,
@@ -91,31 +122,11 @@ void PrunedFft3d::stage_x(Complex* g, int sign) {
 }
 
 void PrunedFft3d::stage_y(Complex* g, int sign) {
-  const FftwPlan& p = py_[sign < 0 ? 0 : 1];
-  const std::size_t plane = static_cast<std::size_t>(pitch_) * n_[1];
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (int z = 0; z < n_[2]; ++z) {
-    FftwBuffer& b = buf_[omp_get_thread_num()];
-    auto* bc = reinterpret_cast<Complex*>(b.data());
-    gather(g + z * plane, pitch_, n_[1], xs_, bc);
-    p.execute_dft(b.as_complex(), b.as_complex());
-    scatter(bc, pitch_, n_[1], xs_, g + z * plane);
-  }
+  lines_along_y(g, n_, static_cast<std::size_t>(pitch_), xs_, py_[sign < 0 ? 0 : 1], buf_, threads_);
 }
 
 void PrunedFft3d::stage_z(Complex* g, int sign) {
-  const FftwPlan& p = pz_[sign < 0 ? 0 : 1];
-  const std::size_t plane = static_cast<std::size_t>(pitch_) * n_[1];
-  const int ny = static_cast<int>(ys_.size());
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (int j = 0; j < ny; ++j) {
-    FftwBuffer& b = buf_[omp_get_thread_num()];
-    auto* bc = reinterpret_cast<Complex*>(b.data());
-    Complex* base = g + static_cast<std::size_t>(ys_[j]) * pitch_;
-    gather(base, plane, n_[2], xs_, bc);
-    p.execute_dft(b.as_complex(), b.as_complex());
-    scatter(bc, plane, n_[2], xs_, base);
-  }
+  lines_along_z(g, n_, static_cast<std::size_t>(pitch_), xs_, ys_, pz_[sign < 0 ? 0 : 1], buf_, threads_);
 }
 
 void PrunedFft3d::forward_pruned(fftw_complex* grid, int sign) {
@@ -163,29 +174,11 @@ PrunedRealFft3d::PrunedRealFft3d(std::array<int, 3> n, std::array<int, 3> K, dou
 }
 
 void PrunedRealFft3d::stage_y(Complex* g, int s) {
-  const std::size_t plane = static_cast<std::size_t>(h0_) * n_[1];
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (int z = 0; z < n_[2]; ++z) {
-    FftwBuffer& b = buf_[omp_get_thread_num()];
-    auto* bc = reinterpret_cast<Complex*>(b.data());
-    gather(g + z * plane, h0_, n_[1], xs_, bc);
-    py_[s].execute_dft(b.as_complex(), b.as_complex());
-    scatter(bc, h0_, n_[1], xs_, g + z * plane);
-  }
+  lines_along_y(g, n_, static_cast<std::size_t>(h0_), xs_, py_[s], buf_, threads_);
 }
 
 void PrunedRealFft3d::stage_z(Complex* g, int s) {
-  const std::size_t plane = static_cast<std::size_t>(h0_) * n_[1];
-  const int ny = static_cast<int>(ys_.size());
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (int j = 0; j < ny; ++j) {
-    FftwBuffer& b = buf_[omp_get_thread_num()];
-    auto* bc = reinterpret_cast<Complex*>(b.data());
-    Complex* base = g + static_cast<std::size_t>(ys_[j]) * h0_;
-    gather(base, plane, n_[2], xs_, bc);
-    pz_[s].execute_dft(b.as_complex(), b.as_complex());
-    scatter(bc, plane, n_[2], xs_, base);
-  }
+  lines_along_z(g, n_, static_cast<std::size_t>(h0_), xs_, ys_, pz_[s], buf_, threads_);
 }
 
 void PrunedRealFft3d::forward(double* data) {
