@@ -193,6 +193,11 @@ std::vector<double> synthesize_on_grid(const HalfSpectrum& h, std::array<int, 3>
   const std::array<int, 3> K = h.max_mode();
   const int t0 = T[0] / 2 + 1;
   FftwBuffer g(2 * static_cast<std::size_t>(t0) * T[1] * T[2]);
+  // In place (g's rows become the padded real rows of the result); only the
+  // folded modes' lines are transformed along y and z. Planned before g is
+  // filled.
+  const std::array<int, 3> kf{std::min(K[0], t0 - 1), K[1], K[2]};
+  PrunedRealFft3d fft(T, kf, g.data(), threads, FFTW_ESTIMATE);
 
   std::complex<double>* G = reinterpret_cast<std::complex<double>*>(g.data());
   // Fold every mode of the box |m_d| <= K_d onto the grid's half spectrum.
@@ -212,10 +217,6 @@ std::vector<double> synthesize_on_grid(const HalfSpectrum& h, std::array<int, 3>
       }
     }
   }
-  // In place (g's rows are the padded real rows of the result); only the
-  // folded modes' lines are transformed along y and z.
-  const std::array<int, 3> kf{std::min(K[0], t0 - 1), K[1], K[2]};
-  PrunedRealFft3d fft(T, kf, g.data(), threads, FFTW_ESTIMATE);
   fft.backward(g.data());
   std::vector<double> out(static_cast<std::size_t>(T[0]) * T[1] * T[2]);
   const std::size_t rows = static_cast<std::size_t>(T[1]) * T[2];
