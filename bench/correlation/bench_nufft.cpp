@@ -11,6 +11,7 @@
 #include <cmath>
 #include <complex>
 #include <map>
+#include <mutex>
 #include <numbers>
 #include <random>
 #include <tuple>
@@ -19,6 +20,7 @@
 #include "contact/correlation/ball_kernels.hpp"
 #include "contact/correlation/nufft3d.hpp"
 #include "contact/correlation/overlap_field.hpp"
+#include "contact/correlation/pruned_fft.hpp"
 #include "contact/correlation/solid_fraction.hpp"
 #include "contact/correlation/truncated_overlap.hpp"
 
@@ -151,6 +153,50 @@ BENCHMARK(BM_Type1)->Apply(NufftArgs);
 BENCHMARK(BM_Type2)->Apply(NufftArgs);
 BENCHMARK(BM_FineFFT)->Apply(FftArgs);
 BENCHMARK(BM_FineFFTW3d)->Apply(FftArgs);
+
+// The real FFTs of the overlap fields: args n (real grid per side), K (modes
+// needed per axis), direction (0: r2c, 1: c2r), threads. Staged and pruned
+// (PrunedRealFft3d, in place) against one FFTW_ESTIMATE 3D plan.
+static void BM_RealFFT(benchmark::State& st) {
+  const int n = static_cast<int>(st.range(0)), K = static_cast<int>(st.range(1));
+  const std::array<int, 3> N = {n, n, n}, KK = {K, K, K};
+  gc::FftwBuffer a(2 * static_cast<std::size_t>(n / 2 + 1) * n * n);
+  gc::PrunedRealFft3d fft(N, KK, a.data(), static_cast<int>(st.range(3)), FFTW_ESTIMATE);
+  for (auto _ : st) {
+    if (st.range(2) == 0)
+      fft.forward(a.data());
+    else
+      fft.backward(a.data());
+  }
+}
+
+static void BM_RealFFTW3d(benchmark::State& st) {
+  const int n = static_cast<int>(st.range(0));
+  gc::FftwBuffer a(2 * static_cast<std::size_t>(n / 2 + 1) * n * n);
+  gc::fftw_threads_init_once();
+  fftw_plan p;
+  {
+    std::lock_guard<std::mutex> lock(gc::fftw_planner_mutex());
+    fftw_plan_with_nthreads(static_cast<int>(st.range(3)));
+    p = st.range(2) == 0 ? fftw_plan_dft_r2c_3d(n, n, n, a.data(), a.as_complex(), FFTW_ESTIMATE)
+                         : fftw_plan_dft_c2r_3d(n, n, n, a.as_complex(), a.data(), FFTW_ESTIMATE);
+  }
+  const gc::FftwPlan plan(p);
+  for (auto _ : st) plan.execute();
+}
+
+static void RealFftArgs(benchmark::internal::Benchmark* b) {
+  // The insertion bench's boxes: a 216^3 fine grid for the scene spectrum
+  // (r2c), a 160^3 field grid (c2r), 80 modes per axis.
+  for (int threads : {1, 2}) {
+    b->Args({216, 80, 0, threads});
+    b->Args({160, 80, 1, threads});
+  }
+  b->Unit(benchmark::kMillisecond)->Iterations(5)->UseRealTime();
+}
+
+BENCHMARK(BM_RealFFT)->Apply(RealFftArgs);
+BENCHMARK(BM_RealFFTW3d)->Apply(RealFftArgs);
 
 // Solid fraction of a dense random (overlapping) bed: args balls, grid
 // nodes per side, -log10(tol), threads. Smoothing length = grid spacing.
