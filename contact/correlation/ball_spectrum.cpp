@@ -186,9 +186,14 @@ HalfSpectrum ball_spectrum_direct(const BallSet& balls, const PeriodicBox& box, 
   return out;
 }
 
-std::vector<double> synthesize_on_grid(const HalfSpectrum& h, std::array<int, 3> T, int threads) {
-  for (int d = 0; d < 3; ++d)
+std::vector<double> synthesize_on_grid(const HalfSpectrum& h, std::array<int, 3> T, int threads,
+                                       std::array<int, 3> keep) {
+  for (int d = 0; d < 3; ++d) {
     if (T[d] < 1) throw std::invalid_argument("synthesize_on_grid: need >= 1 node per axis");
+    if (keep[d] == 0) keep[d] = T[d];
+    if (keep[d] < 1 || keep[d] > T[d])
+      throw std::invalid_argument("synthesize_on_grid: nodes kept must be 1 .. the grid's per axis");
+  }
   threads = threads > 0 ? threads : omp_get_max_threads();
   const std::array<int, 3> K = h.max_mode();
   const int t0 = T[0] / 2 + 1;
@@ -218,23 +223,15 @@ std::vector<double> synthesize_on_grid(const HalfSpectrum& h, std::array<int, 3>
     }
   }
   fft.backward(g.data());
-  std::vector<double> out(static_cast<std::size_t>(T[0]) * T[1] * T[2]);
-  const std::size_t rows = static_cast<std::size_t>(T[1]) * T[2];
+  // The kept nodes out of g's padded rows.
+  std::vector<double> out(static_cast<std::size_t>(keep[0]) * keep[1] * keep[2]);
+  const std::int64_t rows = static_cast<std::int64_t>(keep[1]) * keep[2];
 #pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t r = 0; r < static_cast<std::int64_t>(rows); ++r)
-    std::copy_n(g.data() + 2 * static_cast<std::size_t>(t0) * r, T[0], out.data() + static_cast<std::size_t>(T[0]) * r);
-  return out;
-}
-
-std::vector<double> crop_nodes(const std::vector<double>& full, std::array<int, 3> T,
-                               std::array<int, 3> dims) {
-  if (T == dims) return full;
-  std::vector<double> out(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]);
-  for (int i2 = 0; i2 < dims[2]; ++i2)
-    for (int i1 = 0; i1 < dims[1]; ++i1)
-      for (int i0 = 0; i0 < dims[0]; ++i0)
-        out[(static_cast<std::size_t>(i2) * dims[1] + i1) * dims[0] + i0] =
-            full[(static_cast<std::size_t>(i2) * T[1] + i1) * T[0] + i0];
+  for (std::int64_t r = 0; r < rows; ++r) {
+    const std::size_t src = static_cast<std::size_t>(r / keep[1]) * T[1] + static_cast<std::size_t>(r % keep[1]);
+    std::copy_n(g.data() + 2 * static_cast<std::size_t>(t0) * src, keep[0],
+                out.data() + static_cast<std::size_t>(keep[0]) * static_cast<std::size_t>(r));
+  }
   return out;
 }
 

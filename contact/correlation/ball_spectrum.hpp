@@ -71,12 +71,10 @@ HalfSpectrum ball_spectrum_direct(const BallSet& balls, const PeriodicBox& box, 
 // Real field f(i) = sum_m H(m) exp(2 pi i sum_d m_d i_d / T_d) at the nodes
 // i_d = 0 .. T_d - 1 of a periodic grid, for a Hermitian H given on its half
 // spectrum. Modes beyond the grid's Nyquist fold onto their aliases, which
-// is exact at the nodes. One complex-to-real FFT of the T grid. Values x fastest.
-std::vector<double> synthesize_on_grid(const HalfSpectrum& h, std::array<int, 3> nodes,
-                                       int threads = 0);
-
-// The first dims_d nodes per axis of a T-node grid (both x fastest).
-std::vector<double> crop_nodes(const std::vector<double>& full, std::array<int, 3> T,
-                               std::array<int, 3> dims);
+// is exact at the nodes. One complex-to-real FFT of the T grid. Values x
+// fastest; only the first `keep`_d nodes per axis are returned (0 or absent:
+// all T_d; at most T_d).
+std::vector<double> synthesize_on_grid(const HalfSpectrum& h, std::array<int, 3> nodes, int threads = 0,
+                                       std::array<int, 3> keep = {0, 0, 0});
 
 }  // namespace grains::correlation

@@ -58,12 +58,11 @@ std::vector<double> translational_overlap_field(const BallSet& scene, const Ball
   auto& a = fs.data();
   const auto& b = gs.data();
   for (std::size_t q = 0; q < a.size(); ++q) a[q] *= std::conj(b[q]) * inv_vol;
-  std::vector<double> full = synthesize_on_grid(fs, T, opt.threads);
   if (info) {
     info->max_mode = K;
     info->fft_nodes = T;
   }
-  return crop_nodes(full, T, grid.dims);
+  return synthesize_on_grid(fs, T, opt.threads, grid.dims);
 }
 
 SceneOverlap::SceneOverlap(const BallSet& scene, const GridSpec& grid, double reach, const OverlapFieldOptions& opt)
@@ -121,7 +120,7 @@ std::vector<double> SceneOverlap::field(const BallSet& shape, const std::array<d
   auto& a = prod.data();
   const auto& b = scene_.data();
   for (std::size_t q = 0; q < a.size(); ++q) a[q] = b[q] * std::conj(a[q]) * inv_vol;
-  return crop_nodes(synthesize_on_grid(prod, info_.fft_nodes, opt_.threads), info_.fft_nodes, grid_.dims);
+  return synthesize_on_grid(prod, info_.fft_nodes, opt_.threads, grid_.dims);
 }
 
 std::vector<std::size_t> free_nodes(const std::vector<double>& field, double threshold) {

@@ -55,25 +55,29 @@ std::vector<double> solid_fraction_field(const BallSet& balls, const GridSpec& g
   int classes = 0;
   HalfSpectrum h = ball_spectrum(balls, box, K, so, &classes);
 
-  // Times the Gaussian's transform and 1 / box volume.
+  // Times the Gaussian's transform exp(-l^2 |k|^2 / 2), a product of one
+  // factor per axis, and 1 / box volume.
+  std::array<std::vector<double>, 3> gauss;
+  for (int d = 0; d < 3; ++d) {
+    gauss[d].resize(static_cast<std::size_t>(K[d]) + 1);
+    for (int m = 0; m <= K[d]; ++m) {
+      const double k = 2.0 * std::numbers::pi * m / box.period[d];
+      gauss[d][m] = std::exp(-0.5 * k * k * l * l);
+    }
+  }
   const double inv_vol = 1.0 / box.volume();
   for (int m2 = -K[2]; m2 <= K[2]; ++m2)
-    for (int m1 = -K[1]; m1 <= K[1]; ++m1)
-      for (int m0 = 0; m0 <= K[0]; ++m0) {
-        const double k0 = 2.0 * std::numbers::pi * m0 / box.period[0];
-        const double k1 = 2.0 * std::numbers::pi * m1 / box.period[1];
-        const double k2 = 2.0 * std::numbers::pi * m2 / box.period[2];
-        const double k2sum = k0 * k0 + k1 * k1 + k2 * k2;
-        h(m0, m1, m2) *= inv_vol * std::exp(-0.5 * k2sum * l * l);
-      }
-  std::vector<double> full = synthesize_on_grid(h, T, opt.threads);
+    for (int m1 = -K[1]; m1 <= K[1]; ++m1) {
+      const double g12 = inv_vol * gauss[2][std::abs(m2)] * gauss[1][std::abs(m1)];
+      for (int m0 = 0; m0 <= K[0]; ++m0) h(m0, m1, m2) *= g12 * gauss[0][m0];
+    }
 
   if (info) {
     info->max_mode = K;
     info->fft_nodes = T;
     info->radius_classes = classes;
   }
-  return crop_nodes(full, T, grid.dims);
+  return synthesize_on_grid(h, T, opt.threads, grid.dims);
 }
 
 }  // namespace grains::correlation

@@ -313,5 +313,16 @@ TEST(SynthesizeOnGrid, MatchesTheSumOverModes) {
             worst = std::max(worst, std::abs(f[(static_cast<std::size_t>(i2) * T[1] + i1) * T[0] + i0] - sum.real()));
           }
       EXPECT_LT(worst, 1e-11) << "T = " << T[0] << " x " << T[1] << " x " << T[2] << ", " << threads << " threads";
+      // Only the first nodes per axis: the same values.
+      const std::array<int, 3> keep{std::max(1, T[0] - 1), std::max(1, T[1] / 2), T[2]};
+      const std::vector<double> part = gc::synthesize_on_grid(h, T, threads, keep);
+      ASSERT_EQ(part.size(), static_cast<std::size_t>(keep[0]) * keep[1] * keep[2]);
+      for (int i2 = 0; i2 < keep[2]; ++i2)
+        for (int i1 = 0; i1 < keep[1]; ++i1)
+          for (int i0 = 0; i0 < keep[0]; ++i0)
+            ASSERT_EQ(part[(static_cast<std::size_t>(i2) * keep[1] + i1) * keep[0] + i0],
+                      f[(static_cast<std::size_t>(i2) * T[1] + i1) * T[0] + i0]);
     }
+  EXPECT_THROW(gc::synthesize_on_grid(h, {4, 4, 4}, 1, {5, 4, 4}), std::invalid_argument);
+  EXPECT_THROW(gc::synthesize_on_grid(h, {4, 4, 4}, 1, {4, -1, 4}), std::invalid_argument);
 }
