@@ -149,9 +149,7 @@ PrunedRealFft3d::PrunedRealFft3d(std::array<int, 3> n, std::array<int, 3> K, dou
   for (int d = 0; d < 3; ++d)
     if (n_[d] < 1 || K[d] < 0) throw std::invalid_argument("PrunedRealFft3d: need n_d >= 1 and K_d >= 0");
   for (int i = 0; i <= std::min(K[0], h0_ - 1); ++i) xs_.push_back(i);
-  for (int m = -std::min(K[1], n_[1]); m <= std::min(K[1], n_[1]); ++m) ys_.push_back(((m % n_[1]) + n_[1]) % n_[1]);
-  std::sort(ys_.begin(), ys_.end());
-  ys_.erase(std::unique(ys_.begin(), ys_.end()), ys_.end());
+  ys_ = needed(static_cast<int>(std::min<long>(2L * K[1] + 1, n_[1])), n_[1]);  // |m1| <= K1, or every row
   const int lines = static_cast<int>(xs_.size());
   const std::size_t buf_len = 2 * static_cast<std::size_t>(lines) * std::max(n_[1], n_[2]);
   for (int t = 0; t < threads_; ++t) buf_.emplace_back(buf_len);

@@ -59,8 +59,10 @@ class Spreader {
   int max_sub_;
   std::vector<std::size_t> sub_begin_;       // subproblem boundaries (size + 1)
   std::vector<std::size_t> slab_sub_;        // first subproblem of each z-slab (size + 1)
-  std::vector<std::uint32_t, LargeAllocator<std::uint32_t>> bin_;          // set_points scratch (kept: no page faults on reuse)
-  std::vector<detail::SortedPoint, LargeAllocator<detail::SortedPoint>> points_; // sorted fine-grid coordinates + caller index
+  // set_points scratch (kept: no page faults on reuse)
+  std::vector<std::uint32_t, LargeAllocator<std::uint32_t>> bin_;
+  // sorted fine-grid coordinates + caller index
+  std::vector<detail::SortedPoint, LargeAllocator<detail::SortedPoint>> points_;
 };
 
 }  // namespace grains::correlation
