@@ -179,7 +179,9 @@ void Spreader::spread(const double* c, int nc, double* grid, std::size_t pitch) 
   const int w = poly_.spec.width;
   const int n0 = fine_[0], n1 = fine_[1], n2 = fine_[2];
   const std::size_t row_pitch = pitch == 0 ? static_cast<std::size_t>(n0) : pitch;
-  if (row_pitch < static_cast<std::size_t>(n0)) throw std::invalid_argument("Spreader::spread: pitch shorter than a row");
+  if (row_pitch < static_cast<std::size_t>(n0))
+    throw std::invalid_argument("Spreader::spread: row pitch " + std::to_string(pitch) + " is shorter than a row of " +
+                                std::to_string(n0) + " cells; it must be 0 (rows packed) or >= " + std::to_string(n0));
 
   // Strengths are read in the caller's order inside the spreading loop, each
   // prefetched a few points ahead (spreader_kernels.inc): the random reads

@@ -12,6 +12,7 @@
 
 #include "contact/correlation/nufft3d.hpp"
 #include "contact/correlation/pruned_fft.hpp"
+#include "contact/correlation/spreader.hpp"
 #include "direct_sums.hpp"
 
 namespace gc = grains::correlation;
@@ -382,5 +383,29 @@ TEST(PrunedRealFft3d, MatchesTheFullRealTransformWhereItIsNeeded) {
         }
     EXPECT_GT(scale, 1.0);
     EXPECT_LE(err, 1e-13 * scale) << threads << " threads, backward";
+  }
+}
+
+TEST(Spreader, RowPitchShorterThanARowIsRefused) {
+  const std::array<int, 3> fine = {20, 16, 18};
+  gc::Spreader sp(fine, gc::choose_kernel(1e-6, 2.0), 1, 1000);
+  const std::vector<double> x{0.1, 1.0}, y{0.2, -2.0}, z{0.3, 3.0}, c{1.0, 0.5};
+  sp.set_points(x, y, z);
+  std::vector<double> grid(static_cast<std::size_t>(22) * fine[1] * fine[2], 0.0);
+  try {
+    sp.spread(c.data(), 1, grid.data(), 19);
+    FAIL() << "a pitch of 19 < 20 was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("row pitch 19"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(">= 20"), std::string::npos) << e.what();
+  }
+  // Padded rows (pitch 22) hold the same values as packed ones, in the first 20 cells of each row.
+  std::vector<double> packed(static_cast<std::size_t>(fine[0]) * fine[1] * fine[2], 0.0);
+  sp.spread(c.data(), 1, packed.data());
+  sp.spread(c.data(), 1, grid.data(), 22);
+  for (int r = 0; r < fine[1] * fine[2]; ++r) {
+    for (int i = 0; i < fine[0]; ++i) ASSERT_EQ(grid[22 * r + i], packed[fine[0] * r + i]);
+    ASSERT_EQ(grid[22 * r + 20], 0.0);  // the padding is left alone
+    ASSERT_EQ(grid[22 * r + 21], 0.0);
   }
 }
