@@ -22,6 +22,7 @@
 #include "contact/correlation/overlap_field.hpp"
 #include "contact/correlation/pruned_fft.hpp"
 #include "contact/correlation/solid_fraction.hpp"
+#include "contact/correlation/spreader.hpp"
 #include "contact/correlation/truncated_overlap.hpp"
 
 namespace gc = grains::correlation;
@@ -296,4 +297,11 @@ static void BM_TruncatedQuery(benchmark::State& st) {
 }
 BENCHMARK(BM_TruncatedQuery)->RangeMultiplier(8)->Range(64, 1 << 17)->Unit(benchmark::kMicrosecond);
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  benchmark::AddCustomContext("spreading", gc::spreading_instruction_set());
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

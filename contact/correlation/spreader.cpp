@@ -20,34 +20,35 @@ namespace grains::correlation {
 
 namespace {
 
-// AVX2 + FMA arithmetic when this build has it and the CPU runs it;
-// GRAINS_SIMD=baseline forces the baseline code (for comparisons).
-bool use_avx2() {
+// The copy of the spreading arithmetic in use: the widest instruction set
+// this build has and the CPU runs. GRAINS_SIMD=baseline or =avx2 caps it
+// (for comparisons, and so that the tests exercise every copy on one machine).
+struct ArithmeticCopy {
+  const char* name;
+  void (*spread)(int, int, const detail::SpreadTask&);
+  void (*interpolate)(int, const detail::InterpolateTask&);
+  int (*row_cells)(int, int, int);
+};
+
+const ArithmeticCopy& arithmetic() {
+  static const ArithmeticCopy copy = []() -> ArithmeticCopy {
+    const ArithmeticCopy baseline{"baseline", detail::spread_baseline, detail::interpolate_baseline,
+                                  detail::spread_row_cells_baseline};
 #if GRAINS_SPREAD_AVX2
-  static const bool yes = [] {
     const char* env = std::getenv("GRAINS_SIMD");
-    if (env && std::string(env) == "baseline") return false;
+    const std::string cap = env ? env : "";
+    if (cap == "baseline") return baseline;
     __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  }();
-  return yes;
+    if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma")) return baseline;
+    if (cap != "avx2" && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+        __builtin_cpu_supports("avx512dq"))
+      return {"avx512", detail::spread_avx512, detail::interpolate_avx512, detail::spread_row_cells_avx512};
+    return {"avx2", detail::spread_avx2, detail::interpolate_avx2, detail::spread_row_cells_avx2};
 #else
-  return false;
+    return baseline;
 #endif
-}
-
-void spread_task(int w, int nc, const detail::SpreadTask& t) {
-#if GRAINS_SPREAD_AVX2
-  if (use_avx2()) return detail::spread_avx2(w, nc, t);
-#endif
-  detail::spread_baseline(w, nc, t);
-}
-
-void interpolate_task(int w, const detail::InterpolateTask& t) {
-#if GRAINS_SPREAD_AVX2
-  if (use_avx2()) return detail::interpolate_avx2(w, t);
-#endif
-  detail::interpolate_baseline(w, t);
+  }();
+  return copy;
 }
 
 constexpr std::array<int, 3> kBin = {16, 4, 4};
@@ -88,6 +89,8 @@ inline double fold(double t, int n) {
 }
 
 }  // namespace
+
+const char* spreading_instruction_set() { return arithmetic().name; }
 
 Spreader::Spreader(std::array<int, 3> fine, const KernelSpec& kernel, int threads, int max_subproblem)
     : fine_(fine),
@@ -216,10 +219,10 @@ void Spreader::spread(const double* c, int nc, double* grid, std::size_t pitch) 
               hi[d] = std::max(hi[d], l[d]);
             }
           }
-          const int s0 = hi[0] - lo[0] + W, s1 = hi[1] - lo[1] + W, s2 = hi[2] - lo[2] + W;
+          const int s0 = arithmetic().row_cells(hi[0] - lo[0], W, NC), s1 = hi[1] - lo[1] + W, s2 = hi[2] - lo[2] + W;
           sub.assign(static_cast<std::size_t>(s0) * s1 * s2 * NC, 0.0);
           detail::SpreadTask task{&poly_, points_.data(), c, b, e, {lo[0], lo[1], lo[2]}, s0, s1, sub.data()};
-          spread_task(W, NC, task);
+          arithmetic().spread(W, NC, task);
           // Add the subgrid into the periodic fine grid, each row in at most a
           // few contiguous pieces (it wraps around at most once per period).
           const int x0 = ((lo[0] % n0) + n0) % n0;
@@ -263,7 +266,7 @@ void Spreader::interpolate(const double* grid, double* c) const {
                                        static_cast<std::size_t>(q * chunk),
                                        static_cast<std::size_t>(std::min(m, (q + 1) * chunk)),
                                        c};
-    interpolate_task(w, task);
+    arithmetic().interpolate(w, task);
   }
 }
 

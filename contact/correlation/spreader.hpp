@@ -28,6 +28,11 @@
 
 namespace grains::correlation {
 
+// The instruction set of the spreading arithmetic in use: "avx512", "avx2"
+// or "baseline" (the widest the build has and the CPU runs, capped by the
+// environment variable GRAINS_SIMD=avx2 or =baseline).
+const char* spreading_instruction_set();
+
 class Spreader {
  public:
   Spreader(std::array<int, 3> fine, const KernelSpec& kernel, int threads, int max_subproblem);

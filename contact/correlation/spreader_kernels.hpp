@@ -1,8 +1,9 @@
 #pragma once
-// The arithmetic core of spreading and interpolation, compiled twice: for the
-// baseline instruction set (spreader.cpp) and with AVX2 + FMA
-// (spreader_avx2.cpp, x86-64 only), chosen at run time by the CPU
-// (spreader.cpp). Both copies see the same source (spreader_kernels.inc);
+// The arithmetic core of spreading and interpolation, compiled three times:
+// for the baseline instruction set (spreader.cpp), with AVX2 + FMA
+// (spreader_avx2.cpp) and with AVX-512 (spreader_avx512.cpp; both x86-64
+// only), chosen at run time by the CPU (spreader.cpp). All copies see the
+// same source (spreader_kernels.inc);
 // the tasks below are plain data so that no inline library template is
 // instantiated in the AVX2 unit (the linker could otherwise keep its AVX2
 // copy for the baseline code as well).
@@ -42,11 +43,19 @@ struct InterpolateTask {
   double* c;
 };
 
+// Cells per subgrid row for a subproblem whose points' first nodes span
+// `span` cells in x: W + span plus the room a copy's whole-vector row
+// updates need (they touch it with +0).
+int spread_row_cells_baseline(int span, int width, int nc);
 void spread_baseline(int width, int nc, const SpreadTask& t);
 void interpolate_baseline(int width, const InterpolateTask& t);
 #if GRAINS_SPREAD_AVX2
+int spread_row_cells_avx2(int span, int width, int nc);
 void spread_avx2(int width, int nc, const SpreadTask& t);
 void interpolate_avx2(int width, const InterpolateTask& t);
+int spread_row_cells_avx512(int span, int width, int nc);
+void spread_avx512(int width, int nc, const SpreadTask& t);
+void interpolate_avx512(int width, const InterpolateTask& t);
 #endif
 
 }  // namespace grains::correlation::detail
