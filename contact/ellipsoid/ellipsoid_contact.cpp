@@ -15,14 +15,14 @@ ContactGeometry contact_geometry_from_pw85(const Vector3d& ci, const SymMat3& qi
   const Vector3d qin = form_times(qi, n), qjn = form_times(qj, n);
   const double hi2 = n.dot(qin), hj2 = n.dot(qjn);
   const double hi = std::sqrt(hi2), hj = std::sqrt(hj2);
-  const Vector3d pi = ci + qin / hi, pj = cj - qjn / hj;
+  const Vector3d pi = ci + qin * (1.0 / hi), pj = cj - qjn * (1.0 / hj);
   ContactGeometry g;
   g.normal = -n;
   g.overlap = hi + hj - (cj - ci).dot(n);
   g.point = 0.5 * (pi + pj);
   Vector3d t1, t2;
   tangent_basis(n, t1, t2);
-  g.radius = hertz_radius(curvature_tensor(qi, qin, hi2, hi, t1, t2) + curvature_tensor(qj, qjn, hj2, hj, t1, t2));
+  g.radius = hertz_radius_of_pair(qi, qin, hi2, hi, qj, qjn, hj2, hj, t1, t2);
   return g;
 }
 

@@ -12,7 +12,8 @@
 // a_i + a_j - |r|). This is the overlap of the two bodies' projections on the
 // common normal; it agrees with the true penetration depth to first order in
 // the overlap. The contact point is the midpoint of p_i and p_j, and R* comes
-// from both surfaces' curvature tensors at p_i and p_j (surface_curvature.hpp).
+// from both surfaces' curvature tensors at p_i and p_j (surface_curvature.hpp;
+// hertz_radius_of_pair: the determinant of their sum with one division).
 // The support-point form is used (not x0/mu) so that r = 0 and mu -> 0 stay finite.
 #include <Eigen/Core>
 

@@ -14,21 +14,26 @@ namespace grains::contact {
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
-ContactGeometry ellipsoid_plane_contact(const Ellipsoid& body, const PlaneWall& wall, bool* touching) {
-  const SymMat3 q = body.form();
+ContactGeometry ellipsoid_plane_contact(const Vector3d& centre, const SymMat3& q, const Vector3d& semi_axes,
+                                        const PlaneWall& wall, bool* touching) {
   const Vector3d& m = wall.normal;
   const Vector3d qm = form_times(q, m);
-  const double h = std::sqrt(m.dot(qm));
+  const double h2 = m.dot(qm), h = std::sqrt(h2);
   ContactGeometry g;
   g.normal = m;
-  g.overlap = h - (body.centre - wall.point).dot(m);
-  const Vector3d deepest = body.centre - qm / h;
+  g.overlap = h - (centre - wall.point).dot(m);
+  const Vector3d deepest = centre - qm * (1.0 / h);
   g.point = deepest + 0.5 * g.overlap * m;
-  Vector3d t1, t2;
-  tangent_basis(m, t1, t2);
-  g.radius = hertz_radius(curvature_tensor(q, m, t1, t2));
+  // Against a plane K_body alone: det K = h^2 det(T^T Q^-1 T) = h^2 m^T adj(Q^-1) m
+  // = h^4 / det Q (the normal cofactor; adj(Q^-1) = Q / det Q), so
+  // R* = 1/sqrt(det K) = a0 a1 a2 / h^2, the Gaussian curvature radius.
+  g.radius = semi_axes[0] * semi_axes[1] * semi_axes[2] / h2;
   if (touching) *touching = g.overlap > 0.0;
   return g;
+}
+
+ContactGeometry ellipsoid_plane_contact(const Ellipsoid& body, const PlaneWall& wall, bool* touching) {
+  return ellipsoid_plane_contact(body.centre, body.form(), body.semi_axes, wall, touching);
 }
 
 namespace {

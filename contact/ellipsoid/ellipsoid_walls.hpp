@@ -85,6 +85,11 @@ struct CylinderWall {
 // cylinder, the contact point within the wall's extent).
 ContactGeometry ellipsoid_plane_contact(const Ellipsoid& body, const PlaneWall& wall,
                                         bool* touching = nullptr);
+// The same with the body's form Q already at hand (a DEM scene keeps it per
+// particle): R* in closed form, a0 a1 a2 / h^2 with h = sqrt(m^T Q m).
+ContactGeometry ellipsoid_plane_contact(const Eigen::Vector3d& centre, const SymMat3& form,
+                                        const Eigen::Vector3d& semi_axes, const PlaneWall& wall,
+                                        bool* touching = nullptr);
 ContactGeometry ellipsoid_cylinder_contact(const Ellipsoid& body, const CylinderWall& wall,
                                            bool* touching = nullptr);
 

@@ -256,8 +256,15 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
   // to full relative precision), so that a step multiplies t by e^du and
   // bisection in u is a geometric mean in t: no log or exp near convergence.
   double t;
-  if (opt.lambda_guess > 0.0 && opt.lambda_guess < 1.0) {
-    t = opt.lambda_guess / (1.0 - opt.lambda_guess);
+  double lam = 0.5, lc = 0.5;
+  // A warm start evaluates at the guess itself; t = lambda/(1-lambda) is
+  // formed only if the iteration goes on (a persistent contact usually ends
+  // after this one evaluation: two divisions fewer on its path).
+  const bool warm = opt.lambda_guess > 0.0 && opt.lambda_guess < 1.0;
+  if (warm) {
+    lam = opt.lambda_guess;
+    lc = 1.0 - opt.lambda_guess;
+    t = -1.0;  // not formed yet
   } else {
     // Cold start: the exact answer for two spheres of radii h1, h2 (the
     // support radii of the bodies along r), t = h1/h2.
@@ -268,7 +275,6 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
   const double tol_u = opt.tolerance;  // default 1e-7: quadratic convergence, next error ~ 1e-14
   constexpr double e4 = 54.598150033144236;  // e^4
   double t_lo = 0.0, t_hi = inf, last_step = inf;
-  double lam = 0.5, lc = 0.5;
 
   Eval e;
   Pw85Status status = Pw85Status::not_converged;
@@ -276,8 +282,10 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
   int it = 0;
   while (it < opt.max_iterations) {
     ++it;
-    lc = 1.0 / (1.0 + t);
-    lam = t * lc;
+    if (t >= 0.0) {
+      lc = 1.0 / (1.0 + t);
+      lam = t * lc;
+    }
     if (!evaluate(lam, lc, r, q1, q2, e)) {
       // Q(lambda) is a convex combination of SPD matrices: this only happens
       // for pairs too ill-conditioned for double precision.
@@ -293,10 +301,6 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
       status = Pw85Status::ok;
       break;
     }
-    if (e.df > 0.0)
-      t_lo = t;
-    else
-      t_hi = t;
     const double step = e.step;
     if (std::abs(step) <= tol_u) {
       // Take this last step with the derivatives at hand instead of another
@@ -312,6 +316,11 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
       status = Pw85Status::ok;
       break;
     }
+    if (t < 0.0) t = lam / lc;  // the warm start's t, now needed
+    if (e.df > 0.0)
+      t_lo = t;
+    else
+      t_hi = t;
     if (t_hi <= t_lo * (1.0 + tol_u)) {
       status = Pw85Status::ok;  // bracket at the resolution the data allow
       break;
@@ -347,7 +356,7 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
   if (shift_m != 0) res.mu2 = std::ldexp(res.mu2, -2 * shift_m);
   if (status == Pw85Status::not_converged && it == 1 && best_f == 0.0) return res;
   const double xn = e.x.norm();
-  if (xn > 0.0 && std::isfinite(xn)) res.normal = e.x / xn;
+  if (xn > 0.0 && std::isfinite(xn)) res.normal = e.x * (1.0 / xn);
   res.x0_rel = mul(q1, e.x) * lc;
   if (shift_r != 0) {
     // x0 - c1 = (1-l) Q1 Q^{-1} r has degree 0 in Q and 1 in r.

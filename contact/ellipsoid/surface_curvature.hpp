@@ -17,6 +17,7 @@
 // contact areas, within a few percent for principal-radius ratios below ~5,
 // is neglected). For two spheres this is a1 a2 / (a1 + a2).
 #include <Eigen/Core>
+#include <array>
 #include <cmath>
 
 #include "contact/ellipsoid/ellipsoid.hpp"
@@ -50,6 +51,35 @@ inline Eigen::Matrix2d curvature_tensor(const SymMat3& q, const Eigen::Vector3d&
   Eigen::Matrix2d k;
   k << m22 * scale, -m12 * scale, -m12 * scale, m11 * scale;
   return k;
+}
+
+// h^2 (T^T Q T) - v v^T, v = T^T Q n: the matrix curvature_tensor inverts,
+// times h^2 (no division), as its three entries {m11, m12, m22}.
+inline std::array<double, 3> scaled_tangent_form(const SymMat3& q, const Eigen::Vector3d& qn, double h2,
+                                                 const Eigen::Vector3d& t1, const Eigen::Vector3d& t2) {
+  const Eigen::Vector3d qt1 = form_times(q, t1), qt2 = form_times(q, t2);
+  const double v1 = t1.dot(qn), v2 = t2.dot(qn);
+  return {h2 * t1.dot(qt1) - v1 * v1, h2 * t1.dot(qt2) - v1 * v2, h2 * t2.dot(qt2) - v2 * v2};
+}
+
+// R* = 1/sqrt(det(K_i + K_j)) of two ellipsoids at their support points of
+// normals +n and -n (qn = Q n, h2 = n^T Q n, h = sqrt(h2) for each), with
+// one division and one square root. With K = h m^{-1} (curvature_tensor) and
+// M = h^2 m (scaled_tangent_form), det(X + Y) = det X + det Y + X00 Y11 +
+// X11 Y00 - 2 X01 Y01 for symmetric 2x2 X, Y gives
+//     R*^2 = det M_i det M_j / (h_i^6 det M_j + h_j^6 det M_i + h_i^3 h_j^3 c),
+//     c = Mi11 Mj00 + Mi00 Mj11 - 2 Mi01 Mj01,
+// every term positive for convex bodies (c is the mixed discriminant of two
+// positive-definite matrices). The same value as
+// hertz_radius(curvature_tensor(i) + curvature_tensor(j)) (tested).
+inline double hertz_radius_of_pair(const SymMat3& qi, const Eigen::Vector3d& qin, double hi2, double hi,
+                                   const SymMat3& qj, const Eigen::Vector3d& qjn, double hj2, double hj,
+                                   const Eigen::Vector3d& t1, const Eigen::Vector3d& t2) {
+  const auto mi = scaled_tangent_form(qi, qin, hi2, t1, t2), mj = scaled_tangent_form(qj, qjn, hj2, t1, t2);
+  const double di = mi[0] * mi[2] - mi[1] * mi[1], dj = mj[0] * mj[2] - mj[1] * mj[1];
+  const double c = mi[2] * mj[0] + mi[0] * mj[2] - 2.0 * mi[1] * mj[1];
+  const double h3i = hi2 * hi, h3j = hj2 * hj;
+  return std::sqrt(di * dj / (h3i * h3i * dj + h3j * h3j * di + h3i * h3j * c));
 }
 
 // The same from the normal alone.

@@ -59,7 +59,7 @@ class PlaneWallStage final : public Stage {
         bool touching;
         if constexpr (Shapes) {
           if (p.shape[i] == kEllipsoid) {
-            g = contact::ellipsoid_plane_contact({p.x[i], p.semi_axes[i], p.orientation[i]},
+            g = contact::ellipsoid_plane_contact(p.x[i], p.form[i], p.semi_axes[i],
                                                  contact::PlaneWall{wall.point, wall.normal}, &touching);
           } else {
             touching = contact::sphere_plane(p.x[i], p.radius[i], wall.point, wall.normal, g);

@@ -3,7 +3,9 @@
 // the bodies tangent, and R* matches analytic principal curvatures.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "contact/ellipsoid/ellipsoid_contact.hpp"
 #include "contact/ellipsoid/surface_curvature.hpp"
@@ -114,6 +116,37 @@ TEST(EllipsoidContact, HertzRadiusFromPrincipalCurvatures) {
     ASSERT_TRUE(s.touching);
     const double kx = 1 / (ar * ar) + 1.5 / (4 * ar * ar), kz = 1.0 + 1 / 1.5;
     EXPECT_NEAR(s.geometry.radius, 1 / std::sqrt(kx * kz), 1e-12 * s.geometry.radius);
+  }
+}
+
+TEST(EllipsoidContact, HertzRadiusOfPairMatchesTheCurvatureTensors) {
+  // The one-division form of R* against the determinant of the summed 2x2
+  // curvature tensors, over random triaxial pairs (aspect ratios up to 1000),
+  // orientations and normals. Both carry rounding errors that grow with the
+  // aspect ratio (against a __float128 evaluation: ~1e-15 up to 3, ~1e-13 up
+  // to 30, ~1e-10 up to 1000, for either form).
+  Rng rng(29);
+  for (double ar : {1.0, 3.0, 30.0, 1000.0}) {
+    double worst = 0;
+    for (int k = 0; k < 2000; ++k) {
+      SymMat3 q[2];
+      for (auto& qk : q) {
+        const Vector3d a(1.0, rng.uniform(1.0, ar), rng.uniform(1.0, ar));
+        qk = quadratic_form(a * rng.uniform(0.1, 10), rng.rotation().toRotationMatrix());
+      }
+      const Vector3d n = rng.unit_vector();
+      Vector3d t1, t2;
+      tangent_basis(n, t1, t2);
+      const Vector3d qin = form_times(q[0], n), qjn = form_times(q[1], n);
+      const double hi2 = n.dot(qin), hj2 = n.dot(qjn), hi = std::sqrt(hi2), hj = std::sqrt(hj2);
+      const double expected = hertz_radius(curvature_tensor(q[0], qin, hi2, hi, t1, t2) +
+                                           curvature_tensor(q[1], qjn, hj2, hj, t1, t2));
+      const double got = hertz_radius_of_pair(q[0], qin, hi2, hi, q[1], qjn, hj2, hj, t1, t2);
+      ASSERT_TRUE(std::isfinite(got));
+      worst = std::max(worst, std::abs(got - expected) / expected);
+    }
+    std::printf("aspect ratio <= %g: worst relative difference of R* %.2e\n", ar, worst);
+    EXPECT_LT(worst, 1e-14 * ar * ar + 1e-14);
   }
 }
 

@@ -4,7 +4,9 @@
 // for round bodies, and brute-force sampling for general poses.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "contact/ellipsoid/ellipsoid_walls.hpp"
@@ -62,6 +64,36 @@ TEST(EllipsoidPlane, SphereAndStandingSpheroid) {
   EXPECT_FALSE(touching);
   EXPECT_NEAR(g.overlap, -0.05, 1e-15);
   EXPECT_NEAR(g.radius, 3.0, 1e-14);
+}
+
+TEST(EllipsoidPlane, ClosedFormHertzRadiusMatchesTheCurvatureTensor) {
+  // R* = a0 a1 a2 / h^2 against 1/sqrt(det K) of the 2x2 curvature tensor at
+  // the deepest point, over random poses and aspect ratios up to 1000; the
+  // overload that takes the form gives the same contact bit for bit.
+  Rng rng(41);
+  for (double ar : {1.0, 3.0, 30.0, 1000.0}) {
+    double worst = 0;
+    for (int k = 0; k < 2000; ++k) {
+      Ellipsoid b;
+      b.semi_axes = Vector3d(1.0, rng.uniform(1.0, ar), rng.uniform(1.0, ar)) * rng.uniform(0.1, 10);
+      b.orientation = rng.rotation();
+      b.centre = rng.unit_vector() * rng.uniform(0, 2);
+      const PlaneWall wall{Vector3d(0.1, -0.2, 0.3), rng.unit_vector()};
+      bool touching = false, touching_form = false;
+      const ContactGeometry g = ellipsoid_plane_contact(b, wall, &touching);
+      const ContactGeometry f = ellipsoid_plane_contact(b.centre, b.form(), b.semi_axes, wall, &touching_form);
+      ASSERT_EQ(touching, touching_form);
+      ASSERT_EQ(g.overlap, f.overlap);
+      ASSERT_EQ(g.radius, f.radius);
+      ASSERT_EQ(g.point, f.point);
+      Vector3d t1, t2;
+      tangent_basis(wall.normal, t1, t2);
+      const double expected = hertz_radius(curvature_tensor(b.form(), wall.normal, t1, t2));
+      worst = std::max(worst, std::abs(g.radius - expected) / expected);
+    }
+    std::printf("aspect ratio <= %g: worst relative difference of R* %.2e\n", ar, worst);
+    EXPECT_LT(worst, 1e-14 * ar * ar + 1e-14);
+  }
 }
 
 TEST(EllipsoidPlane, DeepestPointAgainstSampling) {
