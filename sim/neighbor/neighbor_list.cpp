@@ -81,13 +81,15 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
                          bool sort) {
   const std::size_t n_own = p.n_owned();
   const std::size_t n = p.size();
-  // The previous rows, for carrying history by global ids.
-  std::vector<std::uint32_t> old_row_start, old_partner;
-  std::vector<double> old_history;
+  // The previous rows, for carrying history by global ids. They move to
+  // members that keep their capacity, and the new rows are written into the
+  // buffers of the build before: no allocation per build (a list's history
+  // is often over glibc's mmap threshold, and a fresh mapping costs a page
+  // fault per 4 KiB touched).
   if (history_size_ > 0) {
-    old_row_start.swap(row_start);
-    old_partner.swap(partner);
-    old_history.swap(history);
+    prev_row_start_.swap(row_start);
+    prev_partner_.swap(partner);
+    prev_history_.swap(history);
   }
   CellGrid grid(p, n, skin_, lo_bound, hi_bound);
   if (sort && p.n_ghost() == 0) {
@@ -161,7 +163,7 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
 
   compute_pair_constants(p);
   history.assign(partner.size() * static_cast<std::size_t>(history_size_), 0.0);
-  if (history_size_ > 0) carry_history(p, old_row_start, old_partner, old_history);
+  if (history_size_ > 0) carry_history(p, prev_row_start_, prev_partner_, prev_history_);
   if (with_gather_) build_gather(p);
 
   // Wall near lists (owned particles only: walls act on what a rank integrates).

@@ -135,6 +135,9 @@ class NeighborList {
   // Global ids of all particles (owned and ghosts) at the last build: the
   // keys that carry history to the next build.
   std::vector<std::int64_t> build_id_;
+  // The rows of the build before the last (build() reuses their buffers).
+  std::vector<std::uint32_t> prev_row_start_, prev_partner_;
+  std::vector<double> prev_history_;
   // Histories received with migrating particles: (id_a, id_b) and H doubles each.
   std::vector<std::int64_t> imported_ids_;
   std::vector<double> imported_history_;
