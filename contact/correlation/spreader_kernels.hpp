@@ -5,8 +5,8 @@
 // only), chosen at run time by the CPU (spreader.cpp). All copies see the
 // same source (spreader_kernels.inc);
 // the tasks below are plain data so that no inline library template is
-// instantiated in the AVX2 unit (the linker could otherwise keep its AVX2
-// copy for the baseline code as well).
+// instantiated in the AVX2 or AVX-512 unit (the linker could otherwise keep
+// that unit's copy for the baseline code as well).
 #include <cstddef>
 #include <cstdint>
 
