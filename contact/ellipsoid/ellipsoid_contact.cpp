@@ -11,18 +11,13 @@ using Eigen::Vector3d;
 
 ContactGeometry contact_geometry_from_pw85(const Vector3d& ci, const SymMat3& qi, const Vector3d& cj,
                                            const SymMat3& qj, const Pw85Result& pw85) {
-  const Vector3d& n = pw85.normal;  // from i towards j
-  const Vector3d qin = form_times(qi, n), qjn = form_times(qj, n);
-  const double hi2 = n.dot(qin), hj2 = n.dot(qjn);
-  const double hi = std::sqrt(hi2), hj = std::sqrt(hj2);
-  const Vector3d pi = ci + qin * (1.0 / hi), pj = cj - qjn * (1.0 / hj);
+  pw85_kernel::PairGeometry<double> pg;
+  pw85_kernel::pair_geometry(ci.data(), qi.data(), cj.data(), qj.data(), pw85.normal.data(), pg);
   ContactGeometry g;
-  g.normal = -n;
-  g.overlap = hi + hj - (cj - ci).dot(n);
-  g.point = 0.5 * (pi + pj);
-  Vector3d t1, t2;
-  tangent_basis(n, t1, t2);
-  g.radius = hertz_radius_of_pair(qi, qin, hi2, hi, qj, qjn, hj2, hj, t1, t2);
+  g.normal = {pg.normal[0], pg.normal[1], pg.normal[2]};
+  g.overlap = pg.overlap;
+  g.point = {pg.point[0], pg.point[1], pg.point[2]};
+  g.radius = pg.radius;
   return g;
 }
 

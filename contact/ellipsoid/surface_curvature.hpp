@@ -21,18 +21,13 @@
 #include <cmath>
 
 #include "contact/ellipsoid/ellipsoid.hpp"
+#include "contact/ellipsoid/pw85_kernel.hpp"
 
 namespace grains::contact {
 
 // Orthonormal t1, t2 with t1 x t2 = n (n unit).
 inline void tangent_basis(const Eigen::Vector3d& n, Eigen::Vector3d& t1, Eigen::Vector3d& t2) {
-  // Branch-free construction (Duff et al., "Building an orthonormal basis,
-  // revisited", JCGT 2017).
-  const double s = std::copysign(1.0, n[2]);
-  const double a = -1.0 / (s + n[2]);
-  const double b = n[0] * n[1] * a;
-  t1 = {1.0 + s * n[0] * n[0] * a, s * b, -s * n[0]};
-  t2 = {b, s + n[1] * n[1] * a, -n[1]};
+  pw85_kernel::tangent_basis(n.data(), t1.data(), t2.data());
 }
 
 // Curvature tensor of ellipsoid form q at its support point in direction n,
@@ -57,9 +52,9 @@ inline Eigen::Matrix2d curvature_tensor(const SymMat3& q, const Eigen::Vector3d&
 // times h^2 (no division), as its three entries {m11, m12, m22}.
 inline std::array<double, 3> scaled_tangent_form(const SymMat3& q, const Eigen::Vector3d& qn, double h2,
                                                  const Eigen::Vector3d& t1, const Eigen::Vector3d& t2) {
-  const Eigen::Vector3d qt1 = form_times(q, t1), qt2 = form_times(q, t2);
-  const double v1 = t1.dot(qn), v2 = t2.dot(qn);
-  return {h2 * t1.dot(qt1) - v1 * v1, h2 * t1.dot(qt2) - v1 * v2, h2 * t2.dot(qt2) - v2 * v2};
+  std::array<double, 3> m;
+  pw85_kernel::scaled_tangent_form(q.data(), qn.data(), h2, t1.data(), t2.data(), m.data());
+  return m;
 }
 
 // R* = 1/sqrt(det(K_i + K_j)) of two ellipsoids at their support points of
@@ -75,11 +70,8 @@ inline std::array<double, 3> scaled_tangent_form(const SymMat3& q, const Eigen::
 inline double hertz_radius_of_pair(const SymMat3& qi, const Eigen::Vector3d& qin, double hi2, double hi,
                                    const SymMat3& qj, const Eigen::Vector3d& qjn, double hj2, double hj,
                                    const Eigen::Vector3d& t1, const Eigen::Vector3d& t2) {
-  const auto mi = scaled_tangent_form(qi, qin, hi2, t1, t2), mj = scaled_tangent_form(qj, qjn, hj2, t1, t2);
-  const double di = mi[0] * mi[2] - mi[1] * mi[1], dj = mj[0] * mj[2] - mj[1] * mj[1];
-  const double c = mi[2] * mj[0] + mi[0] * mj[2] - 2.0 * mi[1] * mj[1];
-  const double h3i = hi2 * hi, h3j = hj2 * hj;
-  return std::sqrt(di * dj / (h3i * h3i * dj + h3j * h3j * di + h3i * h3j * c));
+  return pw85_kernel::hertz_radius_of_pair(qi.data(), qin.data(), hi2, hi, qj.data(), qjn.data(), hj2, hj,
+                                           t1.data(), t2.data());
 }
 
 // The same from the normal alone.

@@ -6,10 +6,15 @@
 // ellipsoid_contact.hpp). The PW85 lambda of each pair is kept after the
 // law's history and warm-starts the next step's solve. Scenes of spheres
 // only never instantiate this stage.
+#include <omp.h>
+
 #include <algorithm>
+#include <utility>
+#include <vector>
 
 #include "contact/ellipsoid/ellipsoid_contact.hpp"
 #include "contact/ellipsoid/point_ellipsoid.hpp"
+#include "contact/ellipsoid/pw85_lanes.hpp"
 #include "contact/sphere.hpp"
 #include "sim/laws/contact_law.hpp"
 #include "sim/laws/entry_forces.hpp"
@@ -24,6 +29,23 @@ namespace grains::sim {
 /// contact finish in one or two factorisations (docs/pw85.md).
 inline constexpr double kPw85DemTolerance = 1e-4;
 
+/// Separating axis along the line of centres r = x_j - x_i (r2 = |r|^2): true
+/// if the two bodies' shadows on that line do not overlap (support radii
+/// h = sqrt(u^T Q u), u = r/|r|), i.e. the bodies are apart. Two matrix-vector
+/// products, far cheaper than a PW85 solve, and it rejects most pairs whose
+/// bounding spheres overlap. With a = r^T Q_i r = (h_i |r|)^2 (a_i^2 |r|^2
+/// for a sphere), likewise b, and c = |r|^2 the test h_i + h_j <= |r| reads
+/// sqrt(a) + sqrt(b) <= c, i.e. d = c^2 - a - b >= 0 and 4 a b <= d^2: no
+/// square root.
+inline bool apart_along_centres(const ParticleStore& p, std::size_t i, std::size_t j, bool ei, bool ej, const Vec3& r,
+                                double r2) {
+  if (!(r2 > 0)) return false;
+  const double a = ei ? r.dot(contact::form_times(p.form[i], r)) : p.radius[i] * p.radius[i] * r2;
+  const double b = ej ? r.dot(contact::form_times(p.form[j], r)) : p.radius[j] * p.radius[j] * r2;
+  const double d = r2 * r2 - a - b;
+  return d >= 0 && 4 * a * b <= d * d;
+}
+
 /// Geometry of the pair (i, j) for any shapes; `lambda` is the PW85 warm start
 /// (in/out; < 0: cold). Returns false when the bodies do not touch.
 /// `maybe_apart`: the pair probably did not touch at the previous step (first
@@ -33,21 +55,8 @@ inline bool shape_pair_geometry(const ParticleStore& p, std::size_t i, std::size
                                 contact::ContactGeometry& g, bool maybe_apart = true) {
   const bool ei = p.shape[i] == kEllipsoid, ej = p.shape[j] == kEllipsoid;
   if (!ei && !ej) return contact::sphere_sphere(p.x[i], p.radius[i], p.x[j], p.radius[j], g);
-  // Separating axis along the line of centres: if the two shadows on that
-  // line do not overlap (support radii h = sqrt(u^T Q u), u = r/|r|), the
-  // bodies are apart. Two matrix-vector products, far cheaper than a PW85
-  // solve, and it rejects most pairs whose bounding spheres overlap.
-  // With a = r^T Q_i r = (h_i |r|)^2 (a_i^2 |r|^2 for a sphere), likewise b, and
-  // c = |r|^2 the test h_i + h_j <= |r| reads sqrt(a) + sqrt(b) <= c, i.e.
-  // d = c^2 - a - b >= 0 and 4 a b <= d^2: no square root.
   const Vec3 r = p.x[j] - p.x[i];
-  const double r2 = r.squaredNorm();
-  if (r2 > 0) {
-    const double a = ei ? r.dot(contact::form_times(p.form[i], r)) : p.radius[i] * p.radius[i] * r2;
-    const double b = ej ? r.dot(contact::form_times(p.form[j], r)) : p.radius[j] * p.radius[j] * r2;
-    const double d = r2 * r2 - a - b;
-    if (d >= 0 && 4 * a * b <= d * d) return false;
-  }
+  if (apart_along_centres(p, i, j, ei, ej, r, r.squaredNorm())) return false;
   if (ei && ej) {
     // A pair that was apart at the previous step usually still is at the same
     // lambda: f(lambda) > 1 proves it with half a PW85 iteration.
@@ -78,6 +87,15 @@ inline bool shape_pair_geometry(const ParticleStore& p, std::size_t i, std::size
   return true;
 }
 
+/// The pair stage of scenes with ellipsoids. Each step runs in passes over
+/// a block of list rows: (1) the cheap tests (bounding spheres, separating
+/// axis along the line of centres) and every pair with a sphere in it,
+/// directly; (2) the ellipsoid pairs that pass, through PW85 kLanes pairs at
+/// a time (contact/ellipsoid/pw85_lanes.hpp); (3) the contact geometry of
+/// those that touch, likewise; (4) the law for each contact. The result of
+/// every pair is the one of shape_pair_geometry + the law (the same
+/// arithmetic, tested); batching only lets independent pairs' division and
+/// square-root chains overlap (bench/RESULTS.md).
 template <class Law>
 class ShapePairContactStage final : public Stage {
  public:
@@ -95,17 +113,41 @@ class ShapePairContactStage final : public Stage {
   static constexpr int H = Law::history_size;
   static constexpr int NH = H + 1;  // + PW85 lambda
 
+  // Scratch of one block of rows (one per thread).
+  struct Batch {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pending;  // (i, k) of ellipsoid pairs for PW85
+    std::vector<contact::Pw85LaneJob> jobs;
+    std::vector<contact::Pw85LaneResult> results;
+    std::vector<std::uint32_t> touching;  // indices into pending
+    std::vector<contact::PairGeometryJob> geometry_jobs;
+    std::vector<contact::ContactGeometry> geometry;
+  };
+
+  static double* history(Scene& s, std::uint32_t k) {
+    return s.neighbors.history.data() + static_cast<std::size_t>(k) * NH;
+  }
+
+  // The law for the pair (i, k) touching with geometry g: force on i and the
+  // torques on i and j.
+  static GRAINS_INLINE void law(Scene& s, std::size_t i, std::uint32_t k, const contact::ContactGeometry& g,
+                                double* hist, Vec3& force, Vec3& ti, Vec3& tj) {
+    ParticleStore& p = s.particles;
+    const std::size_t j = s.neighbors.partner[k];
+    const PairParams& pp = s.pairs(p.material[i], p.material[j]);
+    const Vec3 ci = g.point - p.x[i], cj = g.point - p.x[j];
+    const Vec3 v_rel = p.v[i] + p.omega[i].cross(ci) - p.v[j] - p.omega[j].cross(cj);
+    const Vec3 w_rel = p.omega[i] - p.omega[j];
+    const auto r = Law::evaluate(g, v_rel, w_rel, s.neighbors.pair_constants[k].mass, pp, s.clock.dt, hist);
+    force = r.force;
+    ti = ci.cross(r.force) + r.rolling_torque;
+    tj = -(cj.cross(r.force) + r.rolling_torque);
+  }
+
+  // One pair of any shapes, scalar (the pairs with a sphere in them).
   static GRAINS_INLINE bool contact(Scene& s, std::size_t i, std::uint32_t k, Vec3& force, Vec3& ti, Vec3& tj) {
     ParticleStore& p = s.particles;
-    NeighborList& nl = s.neighbors;
-    const std::size_t j = nl.partner[k];
-    double* hist = nl.history.data() + static_cast<std::size_t>(k) * NH;
-    const auto& pc = nl.pair_constants[k];
-    if ((p.x[i] - p.x[j]).squaredNorm() >= pc.contact2) {  // bounding spheres apart
-      std::fill_n(hist, NH, 0.0);
-      hist[H] = -1.0;
-      return false;
-    }
+    const std::size_t j = s.neighbors.partner[k];
+    double* hist = history(s, k);
     double lambda = hist[H] > 0 ? hist[H] : -1.0;
     contact::ContactGeometry g;
     // A pair with tangential history touched at the previous step.
@@ -117,47 +159,127 @@ class ShapePairContactStage final : public Stage {
       if constexpr (H > 0) std::fill_n(hist, H, 0.0);
       return false;
     }
-    const PairParams& pp = s.pairs(p.material[i], p.material[j]);
-    const Vec3 ci = g.point - p.x[i], cj = g.point - p.x[j];
-    const Vec3 v_rel = p.v[i] + p.omega[i].cross(ci) - p.v[j] - p.omega[j].cross(cj);
-    const Vec3 w_rel = p.omega[i] - p.omega[j];
-    const auto r = Law::evaluate(g, v_rel, w_rel, pc.mass, pp, s.clock.dt, hist);
-    force = r.force;
-    ti = ci.cross(r.force) + r.rolling_torque;
-    tj = -(cj.cross(r.force) + r.rolling_torque);
+    law(s, i, k, g, hist, force, ti, tj);
     return true;
+  }
+
+  // Rows [r0, r1): touched(i, k, force, ti, tj) for every entry in contact,
+  // apart(k) for every other entry.
+  template <class Touched, class Apart>
+  static void run_rows(Scene& s, std::size_t r0, std::size_t r1, Batch& b, Touched&& touched, Apart&& apart) {
+    ParticleStore& p = s.particles;
+    const NeighborList& nl = s.neighbors;
+    b.pending.clear();
+    b.jobs.clear();
+    Vec3 f, ti, tj;
+    for (std::size_t i = r0; i < r1; ++i) {
+      const bool ei = p.shape[i] == kEllipsoid;
+      for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
+        const std::size_t j = nl.partner[k];
+        double* hist = history(s, k);
+        const Vec3 r = p.x[j] - p.x[i];
+        const double r2 = r.squaredNorm();
+        if (r2 >= nl.pair_constants[k].contact2) {  // bounding spheres apart
+          std::fill_n(hist, NH, 0.0);
+          hist[H] = -1.0;
+          apart(k);
+          continue;
+        }
+        if (!(ei && p.shape[j] == kEllipsoid)) {
+          if (contact(s, i, k, f, ti, tj))
+            touched(i, k, f, ti, tj);
+          else
+            apart(k);
+          continue;
+        }
+        if (apart_along_centres(p, i, j, true, true, r, r2)) {
+          if constexpr (H > 0) std::fill_n(hist, H, 0.0);
+          apart(k);
+          continue;
+        }
+        b.pending.emplace_back(static_cast<std::uint32_t>(i), k);
+        b.jobs.push_back({p.form[i].data(), p.form[j].data(), {r[0], r[1], r[2]}, hist[H] > 0 ? hist[H] : -1.0});
+      }
+    }
+    // PW85 with early exit and warm start at the DEM tolerance; the geometry
+    // (support points, curvatures, R*) only for the pairs that touch.
+    b.results.resize(b.jobs.size());
+    contact::pw85_contact_lanes(b.jobs.data(), b.jobs.size(), b.results.data(), kPw85DemTolerance, true);
+    b.touching.clear();
+    b.geometry_jobs.clear();
+    for (std::size_t m = 0; m < b.pending.size(); ++m) {
+      const auto [i, k] = b.pending[m];
+      const auto& pw = b.results[m];
+      double* hist = history(s, k);
+      if (pw.status == contact::Pw85Status::ok || pw.status == contact::Pw85Status::separated) hist[H] = pw.lambda;
+      if (pw.status == contact::Pw85Status::ok && pw.mu2 < 1.0) {
+        const std::size_t j = nl.partner[k];
+        b.touching.push_back(static_cast<std::uint32_t>(m));
+        b.geometry_jobs.push_back({p.x[i].data(), p.form[i].data(), p.x[j].data(), p.form[j].data(),
+                                   {pw.x[0], pw.x[1], pw.x[2]}});
+        continue;
+      }
+      if constexpr (H > 0) std::fill_n(hist, H, 0.0);
+      apart(k);
+    }
+    b.geometry.resize(b.geometry_jobs.size());
+    contact::contact_geometry_lanes(b.geometry_jobs.data(), b.geometry_jobs.size(), b.geometry.data());
+    for (std::size_t t = 0; t < b.touching.size(); ++t) {
+      const auto [i, k] = b.pending[b.touching[t]];
+      double* hist = history(s, k);
+      const contact::ContactGeometry& g = b.geometry[t];
+      if (!(g.overlap > 0)) {
+        if constexpr (H > 0) std::fill_n(hist, H, 0.0);
+        apart(k);
+        continue;
+      }
+      law(s, i, k, g, hist, f, ti, tj);
+      touched(i, k, f, ti, tj);
+    }
   }
 
   void run_direct(Scene& s) {
     ParticleStore& p = s.particles;
     const NeighborList& nl = s.neighbors;
     const std::size_t rows = nl.row_start.empty() ? 0 : nl.row_start.size() - 1;
-    Vec3 f, ti, tj;
-    for (std::size_t i = 0; i < rows; ++i)
-      for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
-        if (!contact(s, i, k, f, ti, tj)) continue;
-        const std::size_t j = nl.partner[k];
-        p.f[i] += f;
-        p.f[j] -= f;
-        p.torque[i] += ti;
-        p.torque[j] += tj;
-      }
+    if (batches_.empty()) batches_.resize(1);
+    run_rows(
+        s, 0, rows, batches_[0],
+        [&](std::size_t i, std::uint32_t k, const Vec3& f, const Vec3& ti, const Vec3& tj) {
+          const std::size_t j = nl.partner[k];
+          p.f[i] += f;
+          p.f[j] -= f;
+          p.torque[i] += ti;
+          p.torque[j] += tj;
+        },
+        [](std::uint32_t) {});
   }
 
   void run_deferred(Scene& s) {
     const NeighborList& nl = s.neighbors;
-    const auto rows = static_cast<std::ptrdiff_t>(nl.row_start.empty() ? 0 : nl.row_start.size() - 1);
+    const std::size_t rows = nl.row_start.empty() ? 0 : nl.row_start.size() - 1;
     e_.resize<true>(nl.partner.size());
-#pragma omp parallel for schedule(dynamic, 64)
-    for (std::ptrdiff_t ii = 0; ii < rows; ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k)
-        if (!contact(s, i, k, e_.f[k], e_.ti[k], e_.tj[k])) e_.zero<true>(k);
+    constexpr std::size_t kBlock = 64;  // rows per block
+    const auto blocks = static_cast<std::ptrdiff_t>((rows + kBlock - 1) / kBlock);
+    const auto threads = static_cast<std::size_t>(omp_get_max_threads());
+    if (batches_.size() < threads) batches_.resize(threads);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::ptrdiff_t bb = 0; bb < blocks; ++bb) {
+      const std::size_t r0 = static_cast<std::size_t>(bb) * kBlock, r1 = std::min(rows, r0 + kBlock);
+      run_rows(
+          s, r0, r1, batches_[static_cast<std::size_t>(omp_get_thread_num())],
+          [&](std::size_t, std::uint32_t k, const Vec3& f, const Vec3& ti, const Vec3& tj) {
+            e_.f[k] = f;
+            e_.ti[k] = ti;
+            e_.tj[k] = tj;
+          },
+          [&](std::uint32_t k) { e_.zero<true>(k); });
     }
     gather_entry_forces<true>(s.particles, nl, e_);
   }
 
   EntryForces e_;
+  std::vector<Batch> batches_;
 };
 
 }  // namespace grains::sim
