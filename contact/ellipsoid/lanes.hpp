@@ -13,96 +13,135 @@
 //
 // The generic kernels use only: + - * / with doubles mixed in, comparisons
 // giving a mask (bool for double, LaneMask for Lanes), &, select(m, a, b),
-// sqrt_(x), sign_(x) (copysign(1, x)), all_of(m), lane(x, l) and lane_count<T>.
+// sqrt_(x), sign_(x) (copysign(1, x)), all_of(m), get_lane(x, l),
+// set_lane(x, l, v), lane(mask, l) and lane_count<T>.
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+// Hot kernels are forced inline into their loops (also in contact_geometry.hpp).
+#ifndef GRAINS_INLINE
+#define GRAINS_INLINE inline __attribute__((always_inline))
+#endif
 
 namespace grains::contact {
 
 inline constexpr int kLanes = 4;
 
+// The lanes are held as GCC/Clang vector types of kPack doubles (two with
+// SSE2, the x86-64 baseline; four with AVX), so every operator below is
+// kLanes / kPack packed instructions whatever the optimiser decides.
+#if defined(__AVX__)
+inline constexpr int kPack = 4;
+#else
+inline constexpr int kPack = 2;
+#endif
+inline constexpr int kPacks = kLanes / kPack;
+typedef double PackD __attribute__((vector_size(8 * kPack)));
+typedef std::int64_t PackM __attribute__((vector_size(8 * kPack)));
+
 struct LaneMask {
-  std::int64_t v[kLanes];  // all bits set (true) or clear (false), per lane
+  PackM p[kPacks];  // all bits set (true) or clear (false), per lane
 };
 
 struct Lanes {
-  double v[kLanes];
+  PackD p[kPacks];
   Lanes() = default;
   Lanes(double s) {  // NOLINT: broadcast, so that mixed expressions read as scalar code
-    for (int l = 0; l < kLanes; ++l) v[l] = s;
+    for (int i = 0; i < kPacks; ++i) p[i] = s - PackD{};
   }
 };
 
-#define GRAINS_LANES_BINARY(op)                                                \
-  inline Lanes operator op(const Lanes& a, const Lanes& b) {                   \
-    Lanes r;                                                                   \
-    for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] op b.v[l];                \
-    return r;                                                                  \
-  }                                                                            \
-  inline Lanes operator op(double a, const Lanes& b) { return Lanes(a) op b; } \
-  inline Lanes operator op(const Lanes& a, double b) { return a op Lanes(b); } \
-  inline Lanes& operator op##=(Lanes& a, const Lanes& b) { return a = a op b; }
+#define GRAINS_LANES_BINARY(op)                                                        \
+  GRAINS_INLINE Lanes operator op(const Lanes& a, const Lanes& b) {                    \
+    Lanes r;                                                                           \
+    for (int i = 0; i < kPacks; ++i) r.p[i] = a.p[i] op b.p[i];                        \
+    return r;                                                                          \
+  }                                                                                    \
+  GRAINS_INLINE Lanes operator op(double a, const Lanes& b) { return Lanes(a) op b; } \
+  GRAINS_INLINE Lanes operator op(const Lanes& a, double b) { return a op Lanes(b); } \
+  GRAINS_INLINE Lanes& operator op##=(Lanes& a, const Lanes& b) { return a = a op b; }
 GRAINS_LANES_BINARY(+)
 GRAINS_LANES_BINARY(-)
 GRAINS_LANES_BINARY(*)
 GRAINS_LANES_BINARY(/)
 #undef GRAINS_LANES_BINARY
 
-inline Lanes operator-(const Lanes& a) {
+GRAINS_INLINE Lanes operator-(const Lanes& a) {
   Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = -a.v[l];
+  for (int i = 0; i < kPacks; ++i) r.p[i] = -a.p[i];
   return r;
 }
 
-#define GRAINS_LANES_COMPARE(op)                                                   \
-  inline LaneMask operator op(const Lanes& a, const Lanes& b) {                    \
-    LaneMask m;                                                                    \
-    for (int l = 0; l < kLanes; ++l) m.v[l] = a.v[l] op b.v[l] ? -1 : 0;           \
-    return m;                                                                      \
-  }                                                                                \
-  inline LaneMask operator op(const Lanes& a, double b) { return a op Lanes(b); }
+#define GRAINS_LANES_COMPARE(op)                                                             \
+  GRAINS_INLINE LaneMask operator op(const Lanes& a, const Lanes& b) {                       \
+    LaneMask m;                                                                              \
+    for (int i = 0; i < kPacks; ++i) m.p[i] = a.p[i] op b.p[i];                              \
+    return m;                                                                                \
+  }                                                                                          \
+  GRAINS_INLINE LaneMask operator op(const Lanes& a, double b) { return a op Lanes(b); }
 GRAINS_LANES_COMPARE(<)
 GRAINS_LANES_COMPARE(>)
 GRAINS_LANES_COMPARE(!=)
 #undef GRAINS_LANES_COMPARE
 
-inline LaneMask operator&(const LaneMask& a, const LaneMask& b) {
+GRAINS_INLINE LaneMask operator&(const LaneMask& a, const LaneMask& b) {
   LaneMask m;
-  for (int l = 0; l < kLanes; ++l) m.v[l] = a.v[l] & b.v[l];
+  for (int i = 0; i < kPacks; ++i) m.p[i] = a.p[i] & b.p[i];
   return m;
 }
 
-inline Lanes select(const LaneMask& m, const Lanes& a, const Lanes& b) {
+// m ? a : b per lane, by bit masks.
+GRAINS_INLINE Lanes select(const LaneMask& m, const Lanes& a, const Lanes& b) {
   Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = m.v[l] ? a.v[l] : b.v[l];
+  for (int i = 0; i < kPacks; ++i) r.p[i] = (PackD)((m.p[i] & (PackM)a.p[i]) | (~m.p[i] & (PackM)b.p[i]));
   return r;
 }
-inline Lanes sqrt_(const Lanes& a) {
+GRAINS_INLINE Lanes sqrt_(const Lanes& a) {
   Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = std::sqrt(a.v[l]);
+  for (int i = 0; i < kPacks; ++i)
+#if defined(__AVX__)
+    r.p[i] = (PackD)_mm256_sqrt_pd((__m256d)a.p[i]);
+#elif defined(__SSE2__)
+    r.p[i] = (PackD)_mm_sqrt_pd((__m128d)a.p[i]);
+#else
+    for (int e = 0; e < kPack; ++e) r.p[i][e] = std::sqrt(a.p[i][e]);
+#endif
   return r;
 }
-inline Lanes sign_(const Lanes& a) {
+// copysign(1, a) per lane: the sign bit of a on 1.0.
+GRAINS_INLINE Lanes sign_(const Lanes& a) {
+  const PackM sign_bit = (PackM{} + 1) << 63, one = (PackM)(PackD{} + 1.0);
   Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = std::copysign(1.0, a.v[l]);
+  for (int i = 0; i < kPacks; ++i) r.p[i] = (PackD)(((PackM)a.p[i] & sign_bit) | one);
   return r;
 }
-inline bool all_of(const LaneMask& m) {
-  std::int64_t a = -1;
-  for (int l = 0; l < kLanes; ++l) a &= m.v[l];
-  return a != 0;
+GRAINS_INLINE bool all_of(const LaneMask& m) {
+  for (int i = 0; i < kPacks; ++i)
+    for (int e = 0; e < kPack; ++e)
+      if (!m.p[i][e]) return false;
+  return true;
 }
-inline double& lane(Lanes& a, int l) { return a.v[l]; }
-inline double lane(const Lanes& a, int l) { return a.v[l]; }
-inline bool lane(const LaneMask& m, int l) { return m.v[l] != 0; }
+// Lanes from kLanes consecutive doubles.
+GRAINS_INLINE Lanes load_lanes(const double* v) {
+  Lanes r;
+  std::memcpy(static_cast<void*>(&r), v, sizeof r);
+  return r;
+}
+GRAINS_INLINE double get_lane(const Lanes& a, int l) { return a.p[l / kPack][l % kPack]; }
+GRAINS_INLINE void set_lane(Lanes& a, int l, double v) { a.p[l / kPack][l % kPack] = v; }
+GRAINS_INLINE bool lane(const LaneMask& m, int l) { return m.p[l / kPack][l % kPack] != 0; }
 
 // The scalar side of the same vocabulary.
 inline double select(bool m, double a, double b) { return m ? a : b; }
 inline double sqrt_(double a) { return std::sqrt(a); }
 inline double sign_(double a) { return std::copysign(1.0, a); }
 inline bool all_of(bool m) { return m; }
-inline double& lane(double& a, int) { return a; }
-inline double lane(const double& a, int) { return a; }
+inline double get_lane(double a, int) { return a; }
+inline void set_lane(double& a, int, double v) { a = v; }
 inline bool lane(bool m, int) { return m; }
 
 template <class T>

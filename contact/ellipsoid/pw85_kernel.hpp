@@ -24,7 +24,7 @@ struct Ldl {
 // True (per lane) when all three pivots are positive and finite; the factors
 // are computed either way (no branch), and are meaningless where false.
 template <class T>
-inline MaskOf<T> factor(const T* q, Ldl<T>& f) {
+GRAINS_INLINE MaskOf<T> factor(const T* q, Ldl<T>& f) {
   const T d0 = q[0];
   f.i0 = 1.0 / d0;
   f.l10 = q[1] * f.i0;
@@ -40,7 +40,7 @@ inline MaskOf<T> factor(const T* q, Ldl<T>& f) {
 
 // x = Q^{-1} b; also b^T Q^{-1} b = sum y_i^2 / d_i (>= 0 by construction).
 template <class T>
-inline void solve(const Ldl<T>& f, const T* b, T* x, T& bqb) {
+GRAINS_INLINE void solve(const Ldl<T>& f, const T* b, T* x, T& bqb) {
   const T y0 = b[0];
   const T y1 = b[1] - f.l10 * y0;
   const T y2 = b[2] - f.l20 * y0 - f.l21 * y1;
@@ -52,14 +52,14 @@ inline void solve(const Ldl<T>& f, const T* b, T* x, T& bqb) {
 }
 
 template <class T>
-inline void mul(const T* q, const T* v, T* out) {
+GRAINS_INLINE void mul(const T* q, const T* v, T* out) {
   out[0] = q[0] * v[0] + q[1] * v[1] + q[2] * v[2];
   out[1] = q[1] * v[0] + q[3] * v[1] + q[4] * v[2];
   out[2] = q[2] * v[0] + q[4] * v[1] + q[5] * v[2];
 }
 
 template <class T>
-inline T dot(const T* a, const T* b) {
+GRAINS_INLINE T dot(const T* a, const T* b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
@@ -101,7 +101,7 @@ inline double slow_step(double a, double b, double a1, double a2, double df, dou
 // relative precision near either end). False (per lane) when Q(lambda) is
 // numerically singular; the other fields are then meaningless.
 template <class T>
-inline MaskOf<T> evaluate(const T& lam, const T& lc, const T* r, const T* q1, const T* q2, Eval<T>& e) {
+GRAINS_INLINE MaskOf<T> evaluate(const T& lam, const T& lc, const T* r, const T* q1, const T* q2, Eval<T>& e) {
   T q[6];
   for (int i = 0; i < 6; ++i) q[i] = lc * q1[i] + lam * q2[i];
   Ldl<T> fac;
@@ -137,7 +137,7 @@ inline MaskOf<T> evaluate(const T& lam, const T& lc, const T* r, const T* q1, co
   if (!all_of(fast))
     for (int l = 0; l < lane_count<T>; ++l)
       if (!lane(fast, l))
-        lane(e.step, l) = slow_step(lane(a, l), lane(b, l), lane(a1, l), lane(a2, l), lane(e.df, l), lane(d, l));
+        set_lane(e.step, l, slow_step(get_lane(a, l), get_lane(b, l), get_lane(a1, l), get_lane(a2, l), get_lane(e.df, l), get_lane(d, l)));
   return ok;
 }
 
@@ -250,7 +250,7 @@ struct Newton {
 // Orthonormal t1, t2 with t1 x t2 = n (n unit). Branch-free construction
 // (Duff et al., "Building an orthonormal basis, revisited", JCGT 2017).
 template <class T>
-inline void tangent_basis(const T* n, T* t1, T* t2) {
+GRAINS_INLINE void tangent_basis(const T* n, T* t1, T* t2) {
   const T s = sign_(n[2]);
   const T a = -1.0 / (s + n[2]);
   const T b = n[0] * n[1] * a;
@@ -267,7 +267,7 @@ inline void tangent_basis(const T* n, T* t1, T* t2) {
 // of normal n (surface_curvature.hpp), as {m11, m12, m22}; qn = Q n,
 // h2 = n^T Q n.
 template <class T>
-inline void scaled_tangent_form(const T* q, const T* qn, const T& h2, const T* t1, const T* t2, T* m) {
+GRAINS_INLINE void scaled_tangent_form(const T* q, const T* qn, const T& h2, const T* t1, const T* t2, T* m) {
   T qt1[3], qt2[3];
   mul(q, t1, qt1);
   mul(q, t2, qt2);
@@ -281,7 +281,7 @@ inline void scaled_tangent_form(const T* q, const T* qn, const T& h2, const T* t
 // normals +n and -n, with one division and one square root (the derivation
 // is at surface_curvature.hpp's hertz_radius_of_pair).
 template <class T>
-inline T hertz_radius_of_pair(const T* qi, const T* qin, const T& hi2, const T& hi, const T* qj, const T* qjn,
+GRAINS_INLINE T hertz_radius_of_pair(const T* qi, const T* qin, const T& hi2, const T& hi, const T* qj, const T* qjn,
                               const T& hj2, const T& hj, const T* t1, const T* t2) {
   T mi[3], mj[3];
   scaled_tangent_form(qi, qin, hi2, t1, t2, mi);
@@ -305,7 +305,7 @@ struct PairGeometry {
 };
 
 template <class T>
-inline void pair_geometry(const T* ci, const T* qi, const T* cj, const T* qj, const T* n, PairGeometry<T>& g) {
+GRAINS_INLINE void pair_geometry(const T* ci, const T* qi, const T* cj, const T* qj, const T* n, PairGeometry<T>& g) {
   T qin[3], qjn[3];
   mul(qi, n, qin);
   mul(qj, n, qjn);

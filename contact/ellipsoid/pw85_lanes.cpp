@@ -51,10 +51,10 @@ void pw85_contact_lanes(const Pw85LaneJob* jobs, std::size_t count, Pw85LaneResu
           out[id] = {Pw85Status::ok, 0.0, 0.5, {0.0, 0.0, 0.0}};
           continue;
         }
-        for (int k = 0; k < 3; ++k) lane(r[k], l) = jb.r[k];
+        for (int k = 0; k < 3; ++k) set_lane(r[k], l, jb.r[k]);
         for (int k = 0; k < 6; ++k) {
-          lane(q1[k], l) = jb.qi[k];
-          lane(q2[k], l) = jb.qj[k];
+          set_lane(q1[k], l, jb.qi[k]);
+          set_lane(q2[k], l, jb.qj[k]);
         }
         nw[l] = Newton{};
         double rq1r = 0.0, rq2r = 0.0;
@@ -66,8 +66,8 @@ void pw85_contact_lanes(const Pw85LaneJob* jobs, std::size_t count, Pw85LaneResu
           rq2r = dot(jb.r, t2);
         }
         nw[l].start(jb.lambda_guess, rq1r, rq2r);
-        lane(lam, l) = nw[l].lam;
-        lane(lc, l) = nw[l].lc;
+        set_lane(lam, l, nw[l].lam);
+        set_lane(lc, l, nw[l].lc);
         job[l] = id;
         active[l] = true;
       }
@@ -85,27 +85,27 @@ void pw85_contact_lanes(const Pw85LaneJob* jobs, std::size_t count, Pw85LaneResu
         active[l] = false;
         continue;
       }
-      const double lam0 = s.lam, lc0 = s.lc, f = lane(e.f, l), df = lane(e.df, l);
+      const double lam0 = s.lam, lc0 = s.lc, f = get_lane(e.f, l), df = get_lane(e.df, l);
       double dlam = 0.0;
-      const auto verdict = s.next(f, df, lane(e.step, l), tolerance, stop_above, dlam);
+      const auto verdict = s.next(f, df, get_lane(e.step, l), tolerance, stop_above, dlam);
       if (verdict == Newton::again) {
         if (s.it < max_iterations) {
-          lane(lam, l) = s.lam;
-          lane(lc, l) = s.lc;
+          set_lane(lam, l, s.lam);
+          set_lane(lc, l, s.lc);
           continue;
         }
-        o = {Pw85Status::not_converged, s.best_f, s.lam, {lane(e.x[0], l), lane(e.x[1], l), lane(e.x[2], l)}};
+        o = {Pw85Status::not_converged, s.best_f, s.lam, {get_lane(e.x[0], l), get_lane(e.x[1], l), get_lane(e.x[2], l)}};
       } else if (verdict == Newton::separated) {
-        o = {Pw85Status::separated, s.best_f, s.lam, {lane(e.x[0], l), lane(e.x[1], l), lane(e.x[2], l)}};
+        o = {Pw85Status::separated, s.best_f, s.lam, {get_lane(e.x[0], l), get_lane(e.x[1], l), get_lane(e.x[2], l)}};
       } else {
         o.status = Pw85Status::ok;
         o.lambda = s.lam;
         o.mu2 = f;
-        for (int k = 0; k < 3; ++k) o.x[k] = lane(e.x[k], l);
+        for (int k = 0; k < 3; ++k) o.x[k] = get_lane(e.x[k], l);
         if (verdict == Newton::final_step) {
           o.mu2 += dlam * (df + 0.5 * dlam *
-                                    second_derivative(lam0, lc0, lane(e.g, l), lane(e.t, l), lane(e.a, l), lane(e.b, l)));
-          for (int k = 0; k < 3; ++k) o.x[k] -= dlam * lane(e.w[k], l);
+                                    second_derivative(lam0, lc0, get_lane(e.g, l), get_lane(e.t, l), get_lane(e.a, l), get_lane(e.b, l)));
+          for (int k = 0; k < 3; ++k) o.x[k] -= dlam * get_lane(e.w[k], l);
         }
       }
       active[l] = false;
@@ -116,30 +116,34 @@ void pw85_contact_lanes(const Pw85LaneJob* jobs, std::size_t count, Pw85LaneResu
 void contact_geometry_lanes(const PairGeometryJob* jobs, std::size_t count, ContactGeometry* out) {
   constexpr int W = kLanes;
   for (std::size_t first = 0; first < count; first += W) {
-    Lanes ci[3], cj[3], qi[6], qj[6], x[3];
+    // Gathered lane by lane into plain arrays, then loaded as packs.
+    double buf[21][kLanes];  // ci, cj, x (3 each), qi, qj (6 each)
     for (int l = 0; l < W; ++l) {
       // The last group is padded with copies of its last pair.
       const PairGeometryJob& jb = jobs[std::min(first + l, count - 1)];
       for (int k = 0; k < 3; ++k) {
-        lane(ci[k], l) = jb.ci[k];
-        lane(cj[k], l) = jb.cj[k];
-        lane(x[k], l) = jb.x[k];
+        buf[k][l] = jb.ci[k];
+        buf[3 + k][l] = jb.cj[k];
+        buf[6 + k][l] = jb.x[k];
       }
       for (int k = 0; k < 6; ++k) {
-        lane(qi[k], l) = jb.qi[k];
-        lane(qj[k], l) = jb.qj[k];
+        buf[9 + k][l] = jb.qi[k];
+        buf[15 + k][l] = jb.qj[k];
       }
     }
+    Lanes v[21];
+    for (int k = 0; k < 21; ++k) v[k] = load_lanes(buf[k]);
+    const Lanes *ci = v, *cj = v + 3, *x = v + 6, *qi = v + 9, *qj = v + 15;
     Lanes n[3];
     unit_normal(x, n);
     PairGeometry<Lanes> g;
     pair_geometry(ci, qi, cj, qj, n, g);
     for (int l = 0; l < W && first + l < count; ++l) {
       ContactGeometry& o = out[first + l];
-      o.normal = {lane(g.normal[0], l), lane(g.normal[1], l), lane(g.normal[2], l)};
-      o.overlap = lane(g.overlap, l);
-      o.point = {lane(g.point[0], l), lane(g.point[1], l), lane(g.point[2], l)};
-      o.radius = lane(g.radius, l);
+      o.normal = {get_lane(g.normal[0], l), get_lane(g.normal[1], l), get_lane(g.normal[2], l)};
+      o.overlap = get_lane(g.overlap, l);
+      o.point = {get_lane(g.point[0], l), get_lane(g.point[1], l), get_lane(g.point[2], l)};
+      o.radius = get_lane(g.radius, l);
     }
   }
 }
