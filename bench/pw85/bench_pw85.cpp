@@ -13,6 +13,7 @@
 #include "contact/ellipsoid/ellipsoid_contact.hpp"
 #include "contact/ellipsoid/point_ellipsoid.hpp"
 #include "contact/ellipsoid/pw85.hpp"
+#include "contact/ellipsoid/pw85_lanes.hpp"
 #include "tests/unit/ellipsoid/pw85_reference.hpp"
 #include "tests/unit/ellipsoid/random_ellipsoids.hpp"
 
@@ -164,6 +165,34 @@ void BM_DemContact(benchmark::State& state) {
   }
 }
 
+// The same work for a whole list of touching pairs, kLanes pairs in lockstep
+// (pw85_lanes.hpp, what the DEM's pair stage runs): PW85 (warm) + geometry.
+// Time per pair.
+void BM_DemContactLanes(benchmark::State& state) {
+  const double ar = state.range(0);
+  const std::vector<Pair> pairs = make_pairs(ar, 0.5, 1.0, 5);
+  std::vector<Pw85LaneJob> jobs(kPairs);
+  std::vector<Pw85LaneResult> res(kPairs);
+  std::vector<PairGeometryJob> gjobs(kPairs);
+  std::vector<ContactGeometry> geo(kPairs);
+  const Vector3d origin = Vector3d::Zero();
+  for (int k = 0; k < kPairs; ++k) {
+    const double lambda = pw85_contact(pairs[k].r, pairs[k].q1, pairs[k].q2).lambda;
+    jobs[k] = {pairs[k].q1.data(), pairs[k].q2.data(), {pairs[k].r[0], pairs[k].r[1], pairs[k].r[2]}, lambda};
+  }
+  for (auto _ : state) {
+    pw85_contact_lanes(jobs.data(), kPairs, res.data(), 1e-4, true);
+    for (int k = 0; k < kPairs; ++k)
+      gjobs[k] = {origin.data(), pairs[k].q1.data(), pairs[k].r.data(), pairs[k].q2.data(),
+                  {res[k].x[0], res[k].x[1], res[k].x[2]}};
+    contact_geometry_lanes(gjobs.data(), kPairs, geo.data());
+    benchmark::DoNotOptimize(geo.data());
+  }
+  state.SetItemsProcessed(state.iterations() * kPairs);
+  state.counters["ns_per_pair"] = benchmark::Counter(static_cast<double>(state.iterations()) * kPairs,
+                                                     benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 void BM_SphereEllipsoid(benchmark::State& state) {
   const double ar = state.range(0);
   Rng rng(6);
@@ -188,6 +217,7 @@ BENCHMARK(BM_ColdOptions)->ArgsProduct({{1, 2, 10, 100, 1000}, {0, 1}, {7, 4, 3}
 BENCHMARK(BM_Warm)->ASPECT_RATIOS;
 BENCHMARK(BM_EarlyExit)->ASPECT_RATIOS;
 BENCHMARK(BM_DemContact)->ASPECT_RATIOS;
+BENCHMARK(BM_DemContactLanes)->ASPECT_RATIOS;
 BENCHMARK(BM_SphereEllipsoid)->ASPECT_RATIOS;
 
 }  // namespace

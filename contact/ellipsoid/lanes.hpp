@@ -125,6 +125,22 @@ GRAINS_INLINE bool all_of(const LaneMask& m) {
       if (!m.p[i][e]) return false;
   return true;
 }
+// Lanes from f(0), ..., f(kLanes - 1), assembled in registers. (Writing
+// single lanes into a pack in memory and then reading the pack would stall
+// the load on the narrower stores: store-to-load forwarding fails.)
+template <class F>
+GRAINS_INLINE Lanes gather_lanes(F&& f) {
+  Lanes r;
+  for (int i = 0; i < kPacks; ++i) {
+#if defined(__AVX__)
+    r.p[i] = PackD{f(4 * i), f(4 * i + 1), f(4 * i + 2), f(4 * i + 3)};
+#else
+    r.p[i] = PackD{f(2 * i), f(2 * i + 1)};
+#endif
+  }
+  return r;
+}
+
 // Lanes from kLanes consecutive doubles.
 GRAINS_INLINE Lanes load_lanes(const double* v) {
   Lanes r;
