@@ -180,8 +180,10 @@ class ShapePairContactStage final : public Stage {
         const Vec3 r = p.x[j] - p.x[i];
         const double r2 = r.squaredNorm();
         if (r2 >= nl.pair_constants[k].contact2) {  // bounding spheres apart
-          std::fill_n(hist, NH, 0.0);
-          hist[H] = -1.0;
+          if (hist[H] != -1.0) {  // (most such entries were cleared at an earlier step)
+            std::fill_n(hist, NH, 0.0);
+            hist[H] = -1.0;
+          }
           apart(k);
           continue;
         }
@@ -205,8 +207,9 @@ class ShapePairContactStage final : public Stage {
     // (support points, curvatures, R*) only for the pairs that touch.
     b.results.resize(b.jobs.size());
     contact::pw85_contact_lanes(b.jobs.data(), b.jobs.size(), b.results.data(), kPw85DemTolerance, true);
-    b.touching.clear();
-    b.geometry_jobs.clear();
+    b.touching.resize(b.pending.size());
+    b.geometry_jobs.resize(b.pending.size());
+    std::size_t touching = 0;
     for (std::size_t m = 0; m < b.pending.size(); ++m) {
       const auto [i, k] = b.pending[m];
       const auto& pw = b.results[m];
@@ -214,17 +217,17 @@ class ShapePairContactStage final : public Stage {
       if (pw.status == contact::Pw85Status::ok || pw.status == contact::Pw85Status::separated) hist[H] = pw.lambda;
       if (pw.status == contact::Pw85Status::ok && pw.mu2 < 1.0) {
         const std::size_t j = nl.partner[k];
-        b.touching.push_back(static_cast<std::uint32_t>(m));
-        b.geometry_jobs.push_back({p.x[i].data(), p.form[i].data(), p.x[j].data(), p.form[j].data(),
-                                   {pw.x[0], pw.x[1], pw.x[2]}});
+        b.touching[touching] = static_cast<std::uint32_t>(m);
+        b.geometry_jobs[touching++] = {p.x[i].data(), p.form[i].data(), p.x[j].data(), p.form[j].data(),
+                                       {pw.x[0], pw.x[1], pw.x[2]}};
         continue;
       }
       if constexpr (H > 0) std::fill_n(hist, H, 0.0);
       apart(k);
     }
-    b.geometry.resize(b.geometry_jobs.size());
-    contact::contact_geometry_lanes(b.geometry_jobs.data(), b.geometry_jobs.size(), b.geometry.data());
-    for (std::size_t t = 0; t < b.touching.size(); ++t) {
+    b.geometry.resize(touching);
+    contact::contact_geometry_lanes(b.geometry_jobs.data(), touching, b.geometry.data());
+    for (std::size_t t = 0; t < touching; ++t) {
       const auto [i, k] = b.pending[b.touching[t]];
       double* hist = history(s, k);
       const contact::ContactGeometry& g = b.geometry[t];
