@@ -27,7 +27,17 @@
 #define GRAINS_INLINE inline __attribute__((always_inline))
 #endif
 
+// Everything below is compiled once per instruction set (pw85_lanes.cpp
+// baseline, pw85_lanes_avx2.cpp with AVX2), so it lives in a namespace named
+// after it: the two copies never meet at link time.
+#if defined(__AVX__)
+#define GRAINS_LANES_ISA isa_avx
+#else
+#define GRAINS_LANES_ISA isa_base
+#endif
+
 namespace grains::contact {
+inline namespace GRAINS_LANES_ISA {
 
 inline constexpr int kLanes = 4;
 
@@ -168,4 +178,5 @@ inline constexpr int lane_count<Lanes> = kLanes;
 template <class T>
 using MaskOf = decltype(T() < T());
 
+}  // namespace GRAINS_LANES_ISA
 }  // namespace grains::contact

@@ -12,7 +12,9 @@
 
 #include "contact/ellipsoid/lanes.hpp"
 
-namespace grains::contact::pw85_kernel {
+namespace grains::contact {
+inline namespace GRAINS_LANES_ISA {
+namespace pw85_kernel {
 
 // Q = L D L^T of a packed symmetric 3x3 matrix (L unit lower triangular);
 // the reciprocal pivots are kept so that the solves need no division.
@@ -323,4 +325,6 @@ GRAINS_INLINE void pair_geometry(const T* ci, const T* qi, const T* cj, const T*
   g.radius = hertz_radius_of_pair(qi, qin, hi2, hi, qj, qjn, hj2, hj, t1, t2);
 }
 
-}  // namespace grains::contact::pw85_kernel
+}  // namespace pw85_kernel
+}  // namespace GRAINS_LANES_ISA
+}  // namespace grains::contact

@@ -51,4 +51,8 @@ struct PairGeometryJob {
 // contact_geometry_from_pw85 for jobs[0..count).
 void contact_geometry_lanes(const PairGeometryJob* jobs, std::size_t count, ContactGeometry* out);
 
+// The instruction set of the copy in use: "avx2" (x86-64 CPUs with AVX2) or
+// "baseline" (others, or GRAINS_SIMD=baseline). Both give the same bits.
+const char* lanes_instruction_set();
+
 }  // namespace grains::contact

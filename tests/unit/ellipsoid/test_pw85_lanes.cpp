@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "contact/ellipsoid/ellipsoid_contact.hpp"
@@ -100,6 +101,7 @@ void check_list(Rng& rng, std::size_t count, bool stop_if_separated) {
 }
 
 TEST(Pw85Lanes, EveryPairMatchesTheScalarSolverAndGeometry) {
+  std::printf("[pw85 lanes] instruction set: %s\n", lanes_instruction_set());
   Rng rng(77);
   for (const bool stop : {true, false}) {
     for (const std::size_t count : {std::size_t{0}, std::size_t{1}, std::size_t{3}, std::size_t{4}, std::size_t{5}})
