@@ -129,7 +129,8 @@ Pw85Result pw85_contact(const Vector3d& r_in, const SymMat3& q1_in, const SymMat
 
   // Safeguarded Newton in u = log(lambda/(1-lambda)) (pw85_kernel::Newton).
   Newton nw;
-  nw.start(opt.lambda_guess, r.dot(mul(q1, r)), r.dot(mul(q2, r)));
+  const bool cold = !(opt.lambda_guess > 0.0 && opt.lambda_guess < 1.0);
+  nw.start(opt.lambda_guess, cold ? r.dot(mul(q1, r)) : 1.0, cold ? r.dot(mul(q2, r)) : 1.0);
   const double stop_above = opt.stop_if_separated ? separated_above : std::numeric_limits<double>::infinity();
   Eval<double> e;
   Pw85Status status = Pw85Status::not_converged;
