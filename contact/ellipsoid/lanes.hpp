@@ -65,38 +65,33 @@ struct Lanes {
   }
 };
 
-#define GRAINS_LANES_BINARY(op)                                                        \
-  GRAINS_INLINE Lanes operator op(const Lanes& a, const Lanes& b) {                    \
-    Lanes r;                                                                           \
-    for (int i = 0; i < kPacks; ++i) r.p[i] = a.p[i] op b.p[i];                        \
-    return r;                                                                          \
-  }                                                                                    \
-  GRAINS_INLINE Lanes operator op(double a, const Lanes& b) { return Lanes(a) op b; } \
-  GRAINS_INLINE Lanes operator op(const Lanes& a, double b) { return a op Lanes(b); } \
-  GRAINS_INLINE Lanes& operator op##=(Lanes& a, const Lanes& b) { return a = a op b; }
-GRAINS_LANES_BINARY(+)
-GRAINS_LANES_BINARY(-)
-GRAINS_LANES_BINARY(*)
-GRAINS_LANES_BINARY(/)
-#undef GRAINS_LANES_BINARY
+// a op b pack by pack, with a result of type R (Lanes for arithmetic,
+// LaneMask for comparisons); a double operand is broadcast.
+#define GRAINS_LANES_OP(R, op)                                                    \
+  GRAINS_INLINE R operator op(const Lanes& a, const Lanes& b) {                   \
+    R r;                                                                          \
+    for (int i = 0; i < kPacks; ++i) r.p[i] = a.p[i] op b.p[i];                   \
+    return r;                                                                     \
+  }                                                                               \
+  GRAINS_INLINE R operator op(double a, const Lanes& b) { return Lanes(a) op b; } \
+  GRAINS_INLINE R operator op(const Lanes& a, double b) { return a op Lanes(b); }
+GRAINS_LANES_OP(Lanes, +)
+GRAINS_LANES_OP(Lanes, -)
+GRAINS_LANES_OP(Lanes, *)
+GRAINS_LANES_OP(Lanes, /)
+GRAINS_LANES_OP(LaneMask, <)
+GRAINS_LANES_OP(LaneMask, >)
+GRAINS_LANES_OP(LaneMask, !=)
+#undef GRAINS_LANES_OP
+
+GRAINS_INLINE Lanes& operator+=(Lanes& a, const Lanes& b) { return a = a + b; }
+GRAINS_INLINE Lanes& operator-=(Lanes& a, const Lanes& b) { return a = a - b; }
 
 GRAINS_INLINE Lanes operator-(const Lanes& a) {
   Lanes r;
   for (int i = 0; i < kPacks; ++i) r.p[i] = -a.p[i];
   return r;
 }
-
-#define GRAINS_LANES_COMPARE(op)                                                             \
-  GRAINS_INLINE LaneMask operator op(const Lanes& a, const Lanes& b) {                       \
-    LaneMask m;                                                                              \
-    for (int i = 0; i < kPacks; ++i) m.p[i] = a.p[i] op b.p[i];                              \
-    return m;                                                                                \
-  }                                                                                          \
-  GRAINS_INLINE LaneMask operator op(const Lanes& a, double b) { return a op Lanes(b); }
-GRAINS_LANES_COMPARE(<)
-GRAINS_LANES_COMPARE(>)
-GRAINS_LANES_COMPARE(!=)
-#undef GRAINS_LANES_COMPARE
 
 GRAINS_INLINE LaneMask operator&(const LaneMask& a, const LaneMask& b) {
   LaneMask m;
