@@ -143,19 +143,15 @@ class ShapePairContactStage final : public Stage {
     tj = -(cj.cross(r.force) + r.rolling_torque);
   }
 
-  // One pair of any shapes, scalar (the pairs with a sphere in them).
-  static GRAINS_INLINE bool contact(Scene& s, std::size_t i, std::uint32_t k, Vec3& force, Vec3& ti, Vec3& tj) {
-    ParticleStore& p = s.particles;
+  // A pair with a sphere in it (sphere-sphere or sphere-ellipsoid), one at a
+  // time; such pairs keep no PW85 lambda.
+  static GRAINS_INLINE bool contact_with_sphere(Scene& s, std::size_t i, std::uint32_t k, Vec3& force, Vec3& ti,
+                                                Vec3& tj) {
     const std::size_t j = s.neighbors.partner[k];
     double* hist = history(s, k);
-    double lambda = hist[H] > 0 ? hist[H] : -1.0;
+    double lambda = -1.0;
     contact::ContactGeometry g;
-    // A pair with tangential history touched at the previous step.
-    bool maybe_apart = true;
-    for (int h = 0; h < H; ++h) maybe_apart = maybe_apart && hist[h] == 0.0;
-    const bool touching = shape_pair_geometry(p, i, j, lambda, g, maybe_apart);
-    hist[H] = lambda;
-    if (!touching) {
+    if (!shape_pair_geometry(s.particles, i, j, lambda, g)) {
       if constexpr (H > 0) std::fill_n(hist, H, 0.0);
       return false;
     }
@@ -188,7 +184,7 @@ class ShapePairContactStage final : public Stage {
           continue;
         }
         if (!(ei && p.shape[j] == kEllipsoid)) {
-          if (contact(s, i, k, f, ti, tj))
+          if (contact_with_sphere(s, i, k, f, ti, tj))
             touched(i, k, f, ti, tj);
           else
             apart(k);
