@@ -6,10 +6,10 @@
 // Why: one ellipsoid pair's PW85 solve and contact geometry is a chain of
 // dependent divisions and square roots (~150 ns, mostly waiting on them).
 // kLanes pairs in lockstep give the processor independent chains to overlap,
-// and every operator below is a loop of constant trip count that the
-// compiler turns into packed SIMD instructions (two doubles per SSE2
-// instruction in the default build, four with -march=native on AVX2).
-// Each lane's result is the same arithmetic as the scalar code's.
+// and every operator below is packed SIMD (two doubles per SSE2 instruction
+// in the baseline copy, four per AVX instruction in the AVX2 copy that
+// pw85_lanes.cpp chooses at run time, or in a -march=native build). Each
+// lane's result is the same arithmetic as the scalar code's.
 //
 // The generic kernels use only: + - * / with doubles mixed in, comparisons
 // giving a mask (bool for double, LaneMask for Lanes), &, select(m, a, b),
@@ -17,7 +17,6 @@
 // set_lane(x, l, v), lane(mask, l) and lane_count<T>.
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #if defined(__SSE2__)
 #include <immintrin.h>
 #endif
@@ -84,9 +83,6 @@ GRAINS_LANES_OP(LaneMask, >)
 GRAINS_LANES_OP(LaneMask, !=)
 #undef GRAINS_LANES_OP
 
-GRAINS_INLINE Lanes& operator+=(Lanes& a, const Lanes& b) { return a = a + b; }
-GRAINS_INLINE Lanes& operator-=(Lanes& a, const Lanes& b) { return a = a - b; }
-
 GRAINS_INLINE Lanes operator-(const Lanes& a) {
   Lanes r;
   for (int i = 0; i < kPacks; ++i) r.p[i] = -a.p[i];
@@ -146,12 +142,6 @@ GRAINS_INLINE Lanes gather_lanes(F&& f) {
   return r;
 }
 
-// Lanes from kLanes consecutive doubles.
-GRAINS_INLINE Lanes load_lanes(const double* v) {
-  Lanes r;
-  std::memcpy(static_cast<void*>(&r), v, sizeof r);
-  return r;
-}
 GRAINS_INLINE double get_lane(const Lanes& a, int l) { return a.p[l / kPack][l % kPack]; }
 GRAINS_INLINE void set_lane(Lanes& a, int l, double v) { a.p[l / kPack][l % kPack] = v; }
 GRAINS_INLINE bool lane(const LaneMask& m, int l) { return m.p[l / kPack][l % kPack] != 0; }

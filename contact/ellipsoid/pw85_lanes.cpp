@@ -18,8 +18,6 @@ void contact_geometry_lanes_isa(const PairGeometryJob*, std::size_t, ContactGeom
 
 namespace {
 
-constexpr int kLanePack = kPack;
-
 struct LaneCopy {
   const char* name;
   void (*pw85)(const Pw85LaneJob*, std::size_t, Pw85LaneResult*, double, bool, int);
@@ -30,7 +28,7 @@ const LaneCopy& lane_copy() {
   static const LaneCopy copy = []() -> LaneCopy {
     // This file's own copy: the baseline instruction set (AVX in a
     // -march=native build on such a CPU, and then there is no second copy).
-    const LaneCopy baseline{kLanePack == 4 ? "avx (native build)" : "baseline", pw85_contact_lanes_isa,
+    const LaneCopy baseline{kPack == 4 ? "avx (native build)" : "baseline", pw85_contact_lanes_isa,
                             contact_geometry_lanes_isa};
 #if GRAINS_LANES_AVX2
     const char* env = std::getenv("GRAINS_SIMD");
