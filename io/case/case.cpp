@@ -1,5 +1,6 @@
 #include "io/case/case.hpp"
 #include "io/case/clump_shapes.hpp"
+#include "sim/laws/normal_laws.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -143,10 +144,11 @@ class CaseParser {
       mat.density = v_.number(m, d, "density", ctx, 1);
       mat.youngs_modulus = v_.number(m, d, "youngs_modulus", ctx, 1);
       mat.poisson_ratio = v_.number(m, d, "poisson_ratio", ctx, 0.3);
-      mat.restitution = v_.number(m, d, "restitution", ctx, 0.5);
-      mat.friction = v_.number(m, d, "friction", ctx, 0);
-      mat.rolling_friction = v_.number(m, d, "rolling_friction", ctx, 0);
-      mat.cohesion = v_.number(m, d, "cohesion_energy_density", ctx, 0);
+      // Optional keys: their defaults are the declared ones (law_docs.cpp).
+      mat.restitution = v_.number_or_default(m, d, "restitution", ctx);
+      mat.friction = v_.number_or_default(m, d, "friction", ctx);
+      mat.rolling_friction = v_.number_or_default(m, d, "rolling_friction", ctx);
+      mat.cohesion = v_.number_or_default(m, d, "cohesion_energy_density", ctx);
       if (!m["name"]) continue;  // reported as a missing required key
       if (material_index_.count(mat.name)) v_.error(m["name"], ctx, "material '" + mat.name + "' is defined twice");
       material_index_[mat.name] = static_cast<int>(c_.scene.materials.size());
@@ -176,12 +178,72 @@ class CaseParser {
     return sim::SlotChoice::On;
   }
 
+  // The values of a normal law's own keys given in `map` (NaN where absent).
+  template <class N>
+  sim::LawValues law_values(const YAML::Node& map, const std::string& ctx) {
+    sim::LawValues v;
+    const auto& d = doc(std::string("contact.") + N::name);
+    if (!v_.check_map(map, d, ctx)) return v;
+    for (std::size_t k = 0; k < d.keys.size(); ++k) {
+      const auto& spec = d.keys[k];
+      if (!map[spec.name]) continue;
+      v[static_cast<int>(k)] = spec.type == sim::KeyType::Bool ? (v_.boolean(map, d, spec.name, ctx) ? 1.0 : 0.0)
+                                                                : v_.number(map, d, spec.name, ctx);
+    }
+    return v;
+  }
+
+  // The normal law's key maps present in `n` (contact or a pair override):
+  // those of the chosen law are read into `out`; another law's map is an error.
+  void parse_law_maps(const YAML::Node& n, const std::string& ctx, sim::LawValues& out) {
+    const std::string& model = c_.scene.normal.name;
+    sim::for_each_type(sim::NormalLaws{}, [&]<class N>() {
+      const YAML::Node m = n[N::name];
+      if (!m || N::keys().empty()) return;
+      if (model != N::name) {
+        v_.error(m, ctx, std::string("keys of the ") + N::name + " law given, but contact.model is " + model +
+                             "; set contact.model: " + N::name + " or remove them");
+        return;
+      }
+      out = law_values<N>(m, ctx + "." + N::name);
+    });
+  }
+
+  // The chosen law's check of its values (defaults filled in), reported at `at`.
+  void check_law_values(const sim::LawValues& given, const YAML::Node& at, const std::string& ctx) {
+    sim::with_type_named(sim::NormalLaws{}, c_.scene.normal.name, [&]<class N>() {
+      const std::string e = N::check(given);
+      if (!e.empty()) v_.error(at, ctx, std::string("contact.model: ") + N::name + ": " + e);
+    });
+  }
+
   void parse_contact(const YAML::Node& n) {
-    if (!n) return;
+    // The normal law's defaults apply whether or not the section is there.
+    auto defaults = [&] {
+      sim::LawValues v;
+      sim::with_type_named(sim::NormalLaws{}, c_.scene.normal.name, [&]<class N>() { v = sim::law_defaults<N>(); });
+      return v;
+    };
+    if (!n) {
+      c_.scene.normal.values = defaults();
+      return;
+    }
     const auto& d = doc("contact");
     if (!v_.check_map(n, d, "contact")) return;
-    (void)v_.string(n, d, "model", "contact", "hertz");
-    c_.scene.tangential = slot(v_.string(n, d, "tangential", "contact", "auto"));
+    c_.scene.normal.name = v_.string(n, d, "model", "contact", d.find("model")->default_value);
+    c_.scene.normal_where = v_.where(n["model"] ? n["model"] : n);
+    sim::LawValues given;
+    parse_law_maps(n, "contact", given);
+    c_.scene.normal.values = given.over(defaults());
+    check_law_values(c_.scene.normal.values, n[c_.scene.normal.name] ? n[c_.scene.normal.name] : n, "contact");
+    const std::string tangential = v_.string(n, d, "tangential", "contact", "auto");
+    c_.scene.tangential = slot(tangential);
+    sim::with_type_named(sim::NormalLaws{}, c_.scene.normal.name, [&]<class N>() {
+      if (c_.scene.tangential == sim::SlotChoice::On && tangential != N::tangential_name)
+        v_.error(n["tangential"], "contact",
+                 "tangential: " + tangential + " does not pair with model: " + N::name + "; use '" +
+                     N::tangential_name + "', 'none' or 'auto'");
+    });
     c_.scene.rolling = slot(v_.string(n, d, "rolling", "contact", "auto"));
     c_.scene.cohesion = slot(v_.string(n, d, "cohesion", "contact", "auto"));
     const YAML::Node pairs = n["pairs"];
@@ -200,17 +262,14 @@ class CaseParser {
       if (ms && (!ms.IsSequence() || ms.size() != 2)) {
         v_.error(ms, ctx, "materials must be a list of two material names");
       } else if (ms) {
-        for (int k = 0; k < 2; ++k) {
-          YAML::Node tmp;
-          tmp["material"] = ms[k];
-          const int m = material_by_name(ms[k], ctx);
-          (k == 0 ? o.a : o.b) = m;
-        }
+        for (int k = 0; k < 2; ++k) (k == 0 ? o.a : o.b) = material_by_name(ms[k], ctx);
       }
       o.restitution = v_.number(p, pd, "restitution", ctx, -1);
       o.friction = v_.number(p, pd, "friction", ctx, -1);
       o.rolling_friction = v_.number(p, pd, "rolling_friction", ctx, -1);
       o.cohesion = v_.number(p, pd, "cohesion_energy_density", ctx, -1);
+      parse_law_maps(p, ctx, o.normal);
+      if (p[c_.scene.normal.name]) check_law_values(o.normal.over(c_.scene.normal.values), p[c_.scene.normal.name], ctx);
       c_.scene.overrides.push_back(o);
     }
   }

@@ -48,6 +48,11 @@ class Validator {
   // record an error and return the fallback. `k` must be a key of doc.
   double number(const YAML::Node& map, const sim::EffectDoc& doc, const std::string& k, const std::string& ctx,
                 double fallback = 0);
+  /// A number key whose fallback is its declared default (KeySpec::def).
+  double number_or_default(const YAML::Node& map, const sim::EffectDoc& doc, const std::string& k,
+                           const std::string& ctx) {
+    return number(map, doc, k, ctx, spec(doc, k).default_number);
+  }
   std::int64_t integer(const YAML::Node& map, const sim::EffectDoc& doc, const std::string& k,
                        const std::string& ctx, std::int64_t fallback = 0);
   bool boolean(const YAML::Node& map, const sim::EffectDoc& doc, const std::string& k, const std::string& ctx,

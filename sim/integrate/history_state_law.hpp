@@ -15,6 +15,7 @@ namespace grains::sim {
 
 template <class Law>
 struct HistoryInState {
+  using N = typename Law::N;
   using T = typename Law::T;
   using R = typename Law::R;
   using C = typename Law::C;

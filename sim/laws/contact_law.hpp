@@ -4,20 +4,30 @@
 // about shapes: it consumes a contact::ContactGeometry and the relative
 // motion at the contact point. An absent slot is an empty struct, so its
 // code and its history vanish at compile time (no run-time "enabled" flags).
+// The normal law hands the other slots a law-neutral NormalState
+// (normal_state.hpp). The registries of each slot are below and in
+// normal_laws.hpp.
 #include <string>
 
 #include <Eigen/Core>
 
 #include "contact/contact_geometry.hpp"
 #include "sim/laws/cohesion.hpp"
-#include "sim/laws/normal_hertz.hpp"
+#include "sim/laws/normal_laws.hpp"
+#include "sim/laws/registry.hpp"
 #include "sim/laws/rolling.hpp"
 #include "sim/laws/tangential.hpp"
 
 namespace grains::sim {
 
-template <class Tangential, class Rolling, class Cohesion>
+/// The other slots' registries; the first entry of each is "absent".
+using TangentialLaws = TypeList<NoTangential, SpringTangential>;
+using RollingLaws = TypeList<NoRolling, EpsdRolling>;
+using CohesionLaws = TypeList<NoCohesion, SjkrCohesion>;
+
+template <class Normal, class Tangential, class Rolling, class Cohesion>
 struct ContactLaw {
+  using N = Normal;
   using T = Tangential;
   using R = Rolling;
   using C = Cohesion;
@@ -26,7 +36,8 @@ struct ContactLaw {
   static constexpr bool needs_rotation = T::needs_rotation || R::needs_rotation;
 
   static std::string name() {
-    return std::string("hertz") + "+tangential:" + T::name + "+rolling:" + R::name + "+cohesion:" + C::name;
+    return std::string(N::name) + "+tangential:" + T::template label<N>() + "+rolling:" + R::name +
+           "+cohesion:" + C::name;
   }
 
   struct Result {
@@ -41,7 +52,7 @@ struct ContactLaw {
                                 double* hist) {
     const Eigen::Vector3d& n = g.normal;
     const double vn = v_rel.dot(n);
-    const NormalState ns = HertzNormal::evaluate(g.overlap, -vn, g.radius, m, p);
+    const NormalState ns = N::evaluate(g.overlap, -vn, g.radius, m, p);
     Result out;
     out.force = n * (ns.force - C::force(g.overlap, g.radius, p));
     if constexpr (T::history_size > 0) {
@@ -74,7 +85,7 @@ struct ContactLaw {
       const double vn = v_rel.dot(n);
       if constexpr (T::history_size > 0) T::rate(v_rel - n * vn, rate);
       if constexpr (R::history_size > 0) {
-        const NormalState ns = HertzNormal::evaluate(g.overlap, -vn, g.radius, m, p);
+        const NormalState ns = N::evaluate(g.overlap, -vn, g.radius, m, p);
         R::rate(n, w_rel, ns, g.radius, p, rate + T::history_size);
       }
     }

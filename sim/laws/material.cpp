@@ -2,11 +2,14 @@
 
 #include <cmath>
 
-#include "sim/laws/restitution.hpp"
+#include <stdexcept>
+
+#include "sim/laws/normal_laws.hpp"
 
 namespace grains::sim {
 
-PairTable::PairTable(const std::vector<Material>& mats, const std::vector<PairOverride>& overrides)
+PairTable::PairTable(const std::vector<Material>& mats, const std::vector<PairOverride>& overrides,
+                     const NormalLawChoice& normal)
     : n_(static_cast<int>(mats.size())), table_(mats.size() * mats.size()) {
   for (int a = 0; a < n_; ++a)
     for (int b = 0; b < n_; ++b) {
@@ -20,15 +23,21 @@ PairTable::PairTable(const std::vector<Material>& mats, const std::vector<PairOv
       p.friction = 0.5 * (A.friction + B.friction);
       p.rolling_friction = 0.5 * (A.rolling_friction + B.rolling_friction);
       p.cohesion = 0.5 * (A.cohesion + B.cohesion);
+      LawValues values = normal.values;
       for (const auto& o : overrides)
         if ((o.a == a && o.b == b) || (o.a == b && o.b == a)) {
           if (o.restitution >= 0) p.restitution = o.restitution;
           if (o.friction >= 0) p.friction = o.friction;
           if (o.rolling_friction >= 0) p.rolling_friction = o.rolling_friction;
           if (o.cohesion >= 0) p.cohesion = o.cohesion;
+          values = o.normal.over(values);
         }
-      p.damping = damping_for_restitution(p.restitution);
-      p.tangential_damping_ratio = 2.0 * std::sqrt(p.G_eff / p.E_eff);
+      std::string error;
+      const bool known = with_type_named(NormalLaws{}, normal.name, [&]<class N>() { error = N::prepare(p, values); });
+      if (!known) throw std::invalid_argument("unknown normal law '" + normal.name + "'");
+      if (!error.empty())
+        throw std::invalid_argument("contact." + normal.name + " for materials " + A.name + " and " + B.name + ": " +
+                                    error);
       table_[static_cast<std::size_t>(a) * n_ + b] = p;
     }
 }

@@ -1,25 +1,48 @@
 #pragma once
-#include "contact/contact_geometry.hpp"
 // Normal slot: Hertz elastic force with viscous damping calibrated to the
 // target restitution (restitution.hpp), clamped at zero so that an
 // uncohesive contact never pulls:
 //   F_n = max(0, K d^{3/2} + a sqrt(m* K) d^{1/4} d_dot),   K = 4/3 E* sqrt(R*).
-// Case-file keys: materials[].restitution, youngs_modulus, poisson_ratio.
-#include <algorithm>
+// It pairs with Mindlin's tangential spring k_t = 8 G* sqrt(R* d), damped as
+// the normal spring is: eta_t = a sqrt(2/3) sqrt(m* k_t).
+// Case-file keys: materials[].youngs_modulus, poisson_ratio, restitution
+// (no keys of its own). Registered in normal_laws.hpp.
 #include <cmath>
+#include <string>
+#include <vector>
 
+#include "sim/laws/law_values.hpp"
+#include "sim/laws/normal_state.hpp"
 #include "sim/laws/pair_params.hpp"
+#include "sim/laws/restitution.hpp"
+#include "sim/laws/step_scale.hpp"
+#include "sim/scene/effect_doc.hpp"
 
 namespace grains::sim {
 
-struct NormalState {
-  double force;      // clamped normal force magnitude (>= 0), acts on i along +n
-  double sqrt_Rd;    // sqrt(R* d), the Hertz contact radius
-  double stiffness;  // tangent stiffness S_n = 2 E* sqrt(R* d)
-  double damping_scale;  // sqrt(m* K d^{1/2}); the normal damping coefficient is a times this
-};
-
 struct HertzNormal {
+  static constexpr const char* name = "hertz";
+  /// The name of the tangential spring it pairs with (contact.tangential).
+  static constexpr const char* tangential_name = "mindlin";
+  static std::string summary() {
+    return "Hertz elastic force K d^(3/2), K = 4/3 E* sqrt(R*), with viscous damping calibrated so that the "
+           "achieved restitution equals materials[].restitution exactly; clamped at zero (no attraction without "
+           "cohesion). Pairs with Mindlin's tangential spring 8 G* sqrt(R* d). Reads youngs_modulus, poisson_ratio "
+           "and restitution of the materials; no keys of its own.";
+  }
+  static std::vector<KeySpec> keys() { return {}; }
+  static std::string check(const LawValues&) { return {}; }
+  static std::vector<LawValues> examples() { return {LawValues{}}; }
+
+  /// Per material pair, once at set-up: the damping that achieves the
+  /// pair's restitution, and the ratio of the tangential to the normal
+  /// damping scale. Returns an error text, or "" when the values are valid.
+  static std::string prepare(PairParams& p, const LawValues&) {
+    p.damping = damping_for_restitution(p.restitution);
+    p.tangential_damping_ratio = 2.0 * std::sqrt(p.G_eff / p.E_eff);
+    return {};
+  }
+
   /// d: overlap; d_dot: rate of overlap (approach > 0); R: effective radius; m: effective mass.
   /// Three square roots per contact: sqrt(R), sqrt(d) and the damping scale.
   static GRAINS_INLINE NormalState evaluate(double d, double d_dot, double R, double m, const PairParams& p) {
@@ -28,7 +51,16 @@ struct HertzNormal {
     const double K = (4.0 / 3.0) * p.E_eff * sR;
     const double scale = std::sqrt(m * K * sd);  // = sqrt(m* K) d^{1/4}
     const double f = K * d * sd + p.damping * scale * d_dot;
-    return {f > 0 ? f : 0.0, sqrt_Rd, 2.0 * p.E_eff * sqrt_Rd, scale};
+    const double fc = f > 0 ? f : 0.0;
+    // Mindlin: k_t = 8 G* sqrt(R* d); eta_t = a sqrt(2/3) sqrt(m k_t) = a 2 sqrt(G*/E*) sqrt(m K d^{1/2}).
+    return {fc, fc, 2.0 * p.E_eff * sqrt_Rd, 8.0 * p.G_eff * sqrt_Rd, p.damping * p.tangential_damping_ratio * scale};
+  }
+
+  /// The time scale a step is compared with: the Rayleigh time of the
+  /// smallest grain. Above 1 T_R contacts are unresolved; above 0.3 T_R their
+  /// accuracy suffers.
+  static StepScale step_scale(const PairTable&, const GrainExtremes& g) {
+    return {g.rayleigh_time, "Rayleigh times", "T_R", 1.0, 0.3};
   }
 };
 

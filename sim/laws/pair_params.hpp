@@ -1,6 +1,8 @@
 #pragma once
 // Parameters of one material pair, mixed once at set-up (sim/laws/material.cpp)
 // so that the per-contact kernels read a single small struct.
+#include <array>
+
 namespace grains::sim {
 
 struct PairParams {
@@ -12,6 +14,9 @@ struct PairParams {
   double rolling_friction = 0;  // rolling friction coefficient mu_r (dimensionless)
   double cohesion = 0;          // cohesion energy density k_c, J/m^3 (SJKR)
   double tangential_damping_ratio = 0;  // 2 sqrt(G*/E*): eta_t / (a sqrt(m* K) d^{1/4})
+  /// Constants the normal law prepared for this pair, laid out by the law
+  /// (its prepare() and evaluate(); e.g. normal_linear.hpp).
+  std::array<double, 10> normal{};
 };
 
 }  // namespace grains::sim

@@ -6,13 +6,15 @@
 //    Powder Technol. 206, 2011, model type C without the viscous term): a
 //    rolling spring of stiffness k_r = 2.25 S_n mu_r^2 R*^2 on the relative
 //    rotation, torque limited to mu_r R* F_n (full mobilisation). The torque
-//    is kept as 3 doubles of history, rotated into the tangent plane.
+//    is kept as 3 doubles of history, rotated into the tangent plane. S_n
+//    and F_n are the normal law's (NormalState: stiffness, load).
 // Case-file key: materials[].rolling_friction.
 #include <cmath>
 
 #include <Eigen/Core>
 
-#include "sim/laws/normal_hertz.hpp"
+#include "sim/laws/normal_state.hpp"
+#include "sim/laws/pair_params.hpp"
 
 namespace grains::sim {
 
@@ -45,7 +47,7 @@ struct EpsdRolling {
     }
     const Eigen::Vector3d wr = w_rel - n * n.dot(w_rel);
     mr -= stiffness(ns, R, p) * dt * wr;
-    const double limit = p.rolling_friction * R * ns.force;
+    const double limit = p.rolling_friction * R * ns.load;
     const double m2 = mr.squaredNorm();
     if (m2 > limit * limit && m2 > 0) mr *= limit / std::sqrt(m2);
     return mr;

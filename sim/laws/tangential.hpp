@@ -2,18 +2,22 @@
 #include "contact/contact_geometry.hpp"
 // Tangential slot.
 //  * NoTangential: frictionless; no history, no rotation fields.
-//  * MindlinTangential: incremental Mindlin no-slip spring k_t = 8 G* sqrt(R* d)
-//    on the accumulated tangential displacement xi (3 doubles of history per
-//    contact), viscous damping eta_t = a sqrt(2/3) sqrt(m* k_t) (the same
-//    calibrated ratio as the normal slot), Coulomb limit |F_t| <= mu F_n. The
+//  * SpringTangential: an incremental spring on the accumulated tangential
+//    displacement xi (3 doubles of history per contact) with a dashpot,
+//    Coulomb limit |F_t| <= mu F_load. Its stiffness and damping are the ones
+//    the normal law pairs with it (NormalState): with Hertz, Mindlin's no-slip
+//    spring k_t = 8 G* sqrt(R* d) and eta_t = a sqrt(2/3) sqrt(m* k_t) (the
+//    same calibrated ratio as the normal slot), named "mindlin"; with the
+//    linear law, k_t = kappa k_n and gamma_t = x gamma_n, named "linear". The
 //    history is projected onto the current tangent plane each step and,
 //    while sliding, reset to the spring length that gives the Coulomb force.
-// Case-file keys: materials[].friction, materials[].poisson_ratio.
+// Case-file keys: materials[].friction (and the normal law's keys).
 #include <cmath>
 
 #include <Eigen/Core>
 
-#include "sim/laws/normal_hertz.hpp"
+#include "sim/laws/normal_state.hpp"
+#include "sim/laws/pair_params.hpp"
 
 namespace grains::sim {
 
@@ -21,6 +25,8 @@ struct NoTangential {
   static constexpr int history_size = 0;
   static constexpr bool needs_rotation = false;
   static constexpr const char* name = "none";
+  template <class Normal>
+  static const char* label() { return name; }
   static GRAINS_INLINE Eigen::Vector3d force(const Eigen::Vector3d&, const Eigen::Vector3d&, const NormalState&,
                                       double, const PairParams&, double, double*) {
     return Eigen::Vector3d::Zero();
@@ -28,10 +34,13 @@ struct NoTangential {
   static GRAINS_INLINE void rate(const Eigen::Vector3d&, double*) {}
 };
 
-struct MindlinTangential {
+struct SpringTangential {
   static constexpr int history_size = 3;
   static constexpr bool needs_rotation = true;
-  static constexpr const char* name = "mindlin";
+  static constexpr const char* name = "spring";
+  /// The name a case file and the pipeline use: the normal law's pairing.
+  template <class Normal>
+  static const char* label() { return Normal::tangential_name; }
   /// n: unit normal (j -> i); vt: tangential relative velocity of i w.r.t. j at the contact point.
   static GRAINS_INLINE Eigen::Vector3d force(const Eigen::Vector3d& n, const Eigen::Vector3d& vt, const NormalState& ns,
                                       double m, const PairParams& p, double dt, double* h) {
@@ -40,12 +49,11 @@ struct MindlinTangential {
     // changes by a factor cos(angle turned in one step): second order in dt.)
     xi -= n * n.dot(xi);
     xi += vt * dt;
-    const double kt = 8.0 * p.G_eff * ns.sqrt_Rd;
-    // eta_t = a sqrt(2/3) sqrt(m k_t) = a 2 sqrt(G*/E*) sqrt(m K d^{1/2}) (no extra square root).
-    const double eta = p.damping * p.tangential_damping_ratio * ns.damping_scale;
+    const double kt = ns.tangential_stiffness;
+    const double eta = ns.tangential_damping;
     (void)m;
     Eigen::Vector3d ft = -kt * xi - eta * vt;
-    const double limit = p.friction * ns.force;
+    const double limit = p.friction * ns.load;
     const double ft2 = ft.squaredNorm();
     if (ft2 > limit * limit) {
       if (ft2 > 0) {

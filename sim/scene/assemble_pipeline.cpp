@@ -46,20 +46,32 @@ void add_law(Pipeline& p, const SceneNeeds& n) {
   add_contact_stages<Law>(p, n);
 }
 
-template <class T, class R>
+template <class N, class T, class R>
 void dispatch_cohesion(Pipeline& p, const SceneNeeds& n) {
   if (n.cohesion)
-    add_law<ContactLaw<T, R, SjkrCohesion>>(p, n);
+    add_law<ContactLaw<N, T, R, SjkrCohesion>>(p, n);
   else
-    add_law<ContactLaw<T, R, NoCohesion>>(p, n);
+    add_law<ContactLaw<N, T, R, NoCohesion>>(p, n);
 }
 
-template <class T>
+template <class N, class T>
 void dispatch_rolling(Pipeline& p, const SceneNeeds& n) {
   if (n.rolling)
-    dispatch_cohesion<T, EpsdRolling>(p, n);
+    dispatch_cohesion<N, T, EpsdRolling>(p, n);
   else
-    dispatch_cohesion<T, NoRolling>(p, n);
+    dispatch_cohesion<N, T, NoRolling>(p, n);
+}
+
+// The contact stages of the scene's normal law (a name from the registry,
+// sim/laws/normal_laws.hpp) and the slots it needs.
+void add_contact_law(Pipeline& p, const SceneNeeds& n, const std::string& normal) {
+  const bool known = with_type_named(NormalLaws{}, normal, [&]<class N>() {
+    if (n.tangential)
+      dispatch_rolling<N, SpringTangential>(p, n);
+    else
+      dispatch_rolling<N, NoTangential>(p, n);
+  });
+  if (!known) throw SetupError("unknown normal law '" + normal + "'");
 }
 
 template <bool Rot, bool Clumps = false>
@@ -152,10 +164,7 @@ Pipeline assemble_pipeline(const Scene& s, const SceneConfig& c) {
     p.add(std::make_unique<RadiusGrowth>(c.growth));
   }
   p.add(std::make_unique<NeighborStage>(c.sort_particles));
-  if (n.tangential)
-    dispatch_rolling<MindlinTangential>(p, n);
-  else
-    dispatch_rolling<NoTangential>(p, n);
+  add_contact_law(p, n, c.normal.name);
   if (n.clumps) p.add(std::make_unique<ClumpForces>());  // last of the force phase
   // First of the output phase (outputs are added after it), only when asked for.
   if (!c.insertions.empty()) p.add(std::make_unique<InsertionStage>(c.insertions, s.clock.dt, n.ellipsoids));

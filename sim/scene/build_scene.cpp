@@ -11,6 +11,7 @@
 
 #include "contact/ellipsoid/ellipsoid.hpp"
 #include "sim/insert/insertion_stage.hpp"
+#include "sim/laws/normal_laws.hpp"
 #include "sim/scene/placement.hpp"
 #include "sim/integrate/clump_bodies.hpp"
 
@@ -133,34 +134,71 @@ double rayleigh_time(const SceneConfig& c) {
   return t;
 }
 
+GrainExtremes grain_extremes(const SceneConfig& c) {
+  GrainExtremes g;
+  g.rayleigh_time = rayleigh_time(c);
+  g.min_mass = g.min_radius = std::numeric_limits<double>::infinity();
+  auto add = [&](const ParticleSetConfig& s) {
+    const double rho = c.materials[s.material].density;
+    double r = s.placement.radii.empty() ? s.size.smallest()
+                                         : *std::min_element(s.placement.radii.begin(), s.placement.radii.end());
+    const ShapeConfig& sh = s.shape;
+    double mass = 0, curvature = 0;
+    if (sh.kind == ShapeConfig::Kind::Clump) {
+      mass = rho * sh.clump->volume * r * r * r;
+      curvature = r * *std::min_element(sh.clump->radii.begin(), sh.clump->radii.end());
+    } else {
+      const Vec3 axes = r * sh.bounding_factor * sh.axes_rel;
+      mass = rho * 4.0 / 3.0 * M_PI * axes.prod();
+      // The smallest radius of curvature of an ellipsoid: b^2/a.
+      curvature = axes.minCoeff() * axes.minCoeff() / axes.maxCoeff();
+    }
+    g.min_mass = std::min(g.min_mass, mass);
+    g.min_radius = std::min(g.min_radius, curvature);
+  };
+  for (const auto& s : c.sets) add(s);
+  for (const auto& ins : c.insertions) add(ins.grains);
+  return g;
+}
+
 Scene build_scene(SceneConfig& c) {
   Scene s;
   s.domain = c.domain;
   s.gravity = c.gravity;
   s.materials = c.materials;
   s.walls = c.walls;
-  s.pairs = PairTable(c.materials, c.overrides);
+  try {
+    s.pairs = PairTable(c.materials, c.overrides, c.normal);
+  } catch (const std::invalid_argument& e) {
+    throw SetupError(c.normal_where + ": " + e.what());
+  }
   const SceneNeeds need = scene_needs(c, s.pairs);
 
-  // Time step.
-  const double tr = rayleigh_time(c);
+  // Time step: against the time scale of the normal law.
+  const GrainExtremes extremes = grain_extremes(c);
+  StepScale scale;
+  with_type_named(NormalLaws{}, c.normal.name, [&]<class N>() { scale = N::step_scale(s.pairs, extremes); });
   std::ostringstream msg;
   msg.precision(4);
-  if (c.dt_rayleigh > 0) {
-    c.dt = c.dt_rayleigh * tr;
-  } else if (std::isfinite(tr)) {
+  if (c.dt_rayleigh > 0) c.dt = c.dt_rayleigh * extremes.rayleigh_time;
+  const double tr = scale.time;
+  const bool rayleigh = tr == extremes.rayleigh_time;
+  // dt_rayleigh (validated at most 1) needs no check against the Rayleigh time itself.
+  if (std::isfinite(tr) && tr > 0 && !(rayleigh && c.dt_rayleigh > 0)) {
     const double frac = c.dt / tr;
+    const std::string& where = c.dt_where;
     // (ARKODE adapts its steps to the contacts; dt only bounds them.)
-    if (frac > 1.0 && c.integrator == Integrator::Verlet) {
-      msg << c.dt_where << ": time step dt = " << c.dt << " s is " << frac
-          << " Rayleigh times (T_R = " << tr << " s); above 1 the contacts are unresolved and the run would blow up."
-          << " Use dt <= " << 0.3 * tr << " s (0.3 T_R) or give time.dt_rayleigh instead";
+    if (frac > scale.refuse && c.integrator == Integrator::Verlet) {
+      msg << where << ": time step dt = " << c.dt << " s is " << frac << " " << scale.unit << " (" << scale.symbol
+          << " = " << tr << " s); above " << scale.refuse
+          << " the contacts are unresolved and the run would blow up. Use dt <= " << scale.warn * tr << " s ("
+          << scale.warn << " " << scale.symbol << ")"
+          << (rayleigh ? " or give time.dt_rayleigh instead" : "");
       throw SetupError(msg.str());
     }
-    // (ARKODE controls its own steps; dt only bounds them.)
-    if (frac > 0.3 && c.integrator == Integrator::Verlet) {
-      msg << c.dt_where << ": warning: time step dt = " << c.dt << " s is " << frac
-          << " Rayleigh times (T_R = " << tr << " s); above 0.3 the accuracy of contacts suffers";
+    if (frac > scale.warn && c.integrator == Integrator::Verlet) {
+      msg << where << ": warning: time step dt = " << c.dt << " s is " << frac << " " << scale.unit << " ("
+          << scale.symbol << " = " << tr << " s); above " << scale.warn << " the accuracy of contacts suffers";
       c.warnings.push_back(msg.str());
     }
   }

@@ -2,6 +2,7 @@
 // From a SceneConfig to a ready Scene and its step pipeline.
 #include <memory>
 
+#include "sim/laws/step_scale.hpp"
 #include "sim/scene/scene_config.hpp"
 #include "sim/scene/stage.hpp"
 
@@ -27,6 +28,11 @@ SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs);
 /// Rayleigh time pi r sqrt(rho/G) / (0.1631 nu + 0.8766), the smallest over
 /// the particle sets (smallest radius of each size distribution).
 double rayleigh_time(const SceneConfig& c);
+
+/// The lightest grain, the smallest radius of curvature and the Rayleigh
+/// time over the particle sets and insertions: what a normal law's time
+/// scale is computed from (sim/laws/step_scale.hpp).
+GrainExtremes grain_extremes(const SceneConfig& c);
 
 /// Places the particles and sets the clock. Throws SetupError for problems
 /// a user can fix (with the case-file location), e.g. an over-full region,

@@ -35,6 +35,15 @@ std::string KeySpec::range_text() const {
   return o.str();
 }
 
+KeySpec& KeySpec::def(double v) {
+  std::ostringstream o;
+  o.precision(10);
+  o << v;
+  default_value = o.str();
+  default_number = v;
+  return *this;
+}
+
 bool KeySpec::in_range(double v) const {
   if (std::isnan(v)) return false;
   if (min_exclusive ? !(v > min) : !(v >= min)) return false;

@@ -18,6 +18,9 @@ struct KeySpec {
   KeyType type = KeyType::Number;
   bool required = false;
   std::string default_value;  // printed; empty when none
+  /// The default of a number or boolean key as the parser uses it (NaN when
+  /// the key has none, or its default is not a number): written once, here.
+  double default_number = std::numeric_limits<double>::quiet_NaN();
   std::string unit;           // SI unit, empty when dimensionless
   std::string doc;
   double min = -std::numeric_limits<double>::infinity();
@@ -28,6 +31,9 @@ struct KeySpec {
 
   KeySpec& req() { required = true; return *this; }
   KeySpec& def(std::string d) { default_value = std::move(d); return *this; }
+  /// A numeric default: printed by `grains docs` and read by the parser.
+  KeySpec& def(double v);
+  KeySpec& def_bool(bool b) { default_value = b ? "true" : "false"; default_number = b ? 1 : 0; return *this; }
   KeySpec& in(double lo, double hi, bool lo_excl = false, bool hi_excl = false) {
     min = lo; max = hi; min_exclusive = lo_excl; max_exclusive = hi_excl; return *this;
   }

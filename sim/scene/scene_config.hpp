@@ -137,6 +137,8 @@ struct SceneConfig {
   std::vector<PairOverride> overrides;
   std::vector<ParticleSetConfig> sets;
   Walls walls;
+  NormalLawChoice normal;  // contact.model and its keys (sim/laws/normal_laws.hpp)
+  std::string normal_where;  // file:line:column of contact.model
   SlotChoice tangential = SlotChoice::Auto, rolling = SlotChoice::Auto, cohesion = SlotChoice::Auto;
   double dt = 0;           // absolute time step, or 0
   double dt_rayleigh = 0;  // fraction of the Rayleigh time, or 0

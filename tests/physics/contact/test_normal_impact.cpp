@@ -5,62 +5,10 @@
 #include <gtest/gtest.h>
 
 #include "sim/laws/restitution.hpp"
-#include "tests/support/sim_helpers.hpp"
+#include "tests/physics/contact/impact.hpp"
 
 namespace grains::test {
 namespace {
-
-struct ImpactResult {
-  double restitution;
-  double contact_time;
-  double max_overlap;
-};
-
-// Runs one collision with dt = t_c / steps_per_contact; returns what it measured.
-ImpactResult impact(bool wall, double E, double nu, double rho, double R, double v, double e, int steps_per_contact) {
-  const double m = rho * 4.0 / 3.0 * M_PI * R * R * R;
-  const double Estar = wall ? 1.0 / (2 * (1 - nu * nu) / E) : E / (2 * (1 - nu * nu));
-  const double Rstar = wall ? R : R / 2;
-  const double mstar = wall ? m : m / 2;
-  const double vrel = wall ? v : 2 * v;
-  const double tc = 2.8683 * std::pow(mstar * mstar / (Rstar * Estar * Estar * vrel), 0.2);
-  const double dt = tc / steps_per_contact;
-  std::ostringstream y;
-  y.precision(17);
-  const double gap = 0.02 * R;  // start just apart
-  y << "domain: {min: [" << -4 * R << ", " << -2 * R << ", " << -2 * R << "], max: [" << 4 * R << ", " << 2 * R << ", "
-    << 2 * R << "]}\n";
-  y << "materials:\n" << material("m", rho, E, nu, e, 0);
-  y << "particles:\n";
-  if (wall) {
-    y << single("a", "m", sim::Vec3(R + gap, 0, 0), R, sim::Vec3(-v, 0, 0));
-    y << "walls:\n  - {type: plane, point: [0, 0, 0], normal: [1, 0, 0], material: m}\n";
-  } else {
-    y << single("a", "m", sim::Vec3(-R - gap, 0, 0), R, sim::Vec3(v, 0, 0));
-    y << single("b", "m", sim::Vec3(R + gap, 0, 0), R, sim::Vec3(-v, 0, 0));
-  }
-  y << "time: {dt: " << dt << ", end: " << 3 * tc + 4 * gap / vrel << "}\n";
-  auto s = from_yaml(y.str());
-  auto& sc = s.scene;
-  s.pipeline.initialize(sc);
-  auto overlap = [&] {
-    const auto& p = sc.particles;
-    if (wall) return R - p.x[0][0];
-    return 2 * R - (p.x[index_of(p, 1)] - p.x[index_of(p, 0)]).norm();
-  };
-  double prev = overlap(), t_in = -1, t_out = -1, dmax = 0;
-  while (sc.clock.step < sc.clock.n_steps) {
-    s.pipeline.step(sc);
-    const double d = overlap();
-    dmax = std::max(dmax, d);
-    if (prev <= 0 && d > 0 && t_in < 0) t_in = sc.clock.time - dt * d / (d - prev);
-    if (prev > 0 && d <= 0 && t_in >= 0 && t_out < 0) t_out = sc.clock.time - dt * d / (d - prev);
-    prev = d;
-  }
-  const auto& p = sc.particles;
-  const double vout = wall ? p.v[0][0] : p.v[index_of(p, 1)][0] - p.v[index_of(p, 0)][0];
-  return {vout / vrel, t_out - t_in, dmax};
-}
 
 TEST(NormalImpact, ChungOoiGlassHertzContactTimeAndOverlap) {
   // e = 1: the Hertz formulas are for elastic impact.

@@ -1,0 +1,26 @@
+#pragma once
+// The registry of normal laws: the one place a normal law is registered.
+// Everything else (the pipeline's dispatch, the pair table's calibration,
+// `grains docs`, the case parser's contact.model and contact.<law> keys,
+// the time-step check and the property tests) walks this list.
+//
+// A normal law is a struct with
+//   name, tangential_name          case-file names of the law and of the tangential spring it pairs with
+//   summary(), keys()              its documentation and its own keys (contact.<name>: {...}), in
+//                                  LawValues order, with units, defaults and ranges
+//   check(values)                  "" or what is wrong with the keys given (defaults filled in)
+//   prepare(PairParams&, values)   per material pair at set-up: calibration into PairParams
+//   evaluate(d, d_dot, R*, m*, p)  the NormalState of one contact (inlined into every contact loop)
+//   step_scale(pairs, grains)      the time scale the time step is checked against
+//   examples()                     valid values, one per way of giving the law (the property tests run
+//                                  every law with each)
+// (docs/architecture.md: how to add one).
+#include "sim/laws/normal_hertz.hpp"
+#include "sim/laws/normal_linear.hpp"
+#include "sim/laws/registry.hpp"
+
+namespace grains::sim {
+
+using NormalLaws = TypeList<HertzNormal, LinearNormal>;  // the first is the default
+
+}  // namespace grains::sim

@@ -1,0 +1,117 @@
+// contact.model and a normal law's own keys (contact.<law>: {...}), read
+// through the registry (sim/laws/normal_laws.hpp): accepted values reach the
+// pair table, mistakes are reported with their location.
+#include <gtest/gtest.h>
+
+#include "io/case/case.hpp"
+#include "io/run/simulation.hpp"
+#include "sim/laws/normal_linear.hpp"
+
+namespace grains::io {
+namespace {
+
+const std::string kCase = R"(domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}
+materials:
+  - {name: glass, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3, friction: 0.5, restitution: 0.6}
+  - {name: steel, density: 7800, youngs_modulus: 2.0e8, poisson_ratio: 0.3, friction: 0.2}
+particles:
+  - material: glass
+    radius: 0.0005
+    count: 10
+    placement: {type: random_fill, region: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}}
+time: {dt: 1.0e-6, end: 1.0e-5}
+)";
+
+std::string errors_of(const std::string& yaml) {
+  try {
+    (void)make_simulation(parse_case(yaml, "case.yaml"));
+  } catch (const CaseError& e) {
+    return e.what();
+  } catch (const sim::SetupError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "case was accepted:\n" << yaml;
+  return "";
+}
+
+using L = sim::LinearNormal;
+
+TEST(NormalLawKeys, LinearValuesAndDefaultsReachThePairTable) {
+  auto c = parse_case(kCase + "contact:\n  model: linear\n  linear: {stiffness: 3.0e3}\n  pairs:\n"
+                              "    - {materials: [glass, steel], linear: {stiffness: 5.0e3, damping: 0.1}}\n",
+                      "case.yaml");
+  EXPECT_EQ(c.scene.normal.name, "linear");
+  auto s = make_simulation(std::move(c));
+  const auto& glass = s.scene.pairs(0, 0);
+  EXPECT_EQ(glass.normal[L::sMode], L::Stiffness);
+  EXPECT_EQ(glass.normal[L::sK], 3e3);
+  EXPECT_LT(glass.normal[L::sGamma], 0);  // from the restitution
+  const double le = std::log(0.6);
+  EXPECT_DOUBLE_EQ(glass.normal[L::sG1], -2 * le / std::sqrt(M_PI * M_PI + le * le));
+  EXPECT_DOUBLE_EQ(glass.normal[L::sKappa], 2.0 / 7.0);  // the declared defaults
+  EXPECT_DOUBLE_EQ(glass.normal[L::sX], 0.5);
+  const auto& mixed = s.scene.pairs(0, 1);
+  EXPECT_EQ(mixed.normal[L::sK], 5e3);
+  EXPECT_EQ(mixed.normal[L::sGamma], 0.1);
+  EXPECT_EQ(s.scene.pairs(1, 1).normal[L::sK], 3e3);
+  // The default restitution of a material (steel gives none) is the declared 0.5.
+  EXPECT_EQ(s.scene.materials[1].restitution, 0.5);
+}
+
+TEST(NormalLawKeys, HertzIsTheDefaultAndUnchanged) {
+  auto s = make_simulation(parse_case(kCase, "case.yaml"));
+  bool found = false;
+  for (const auto& n : s.pipeline.stage_names())
+    found = found || n == "force: force.pair_contacts<hertz+tangential:mindlin+rolling:none+cohesion:none>";
+  EXPECT_TRUE(found);
+}
+
+TEST(NormalLawKeys, UnknownModelListsTheRegisteredOnes) {
+  const auto m = errors_of(kCase + "contact: {model: hooke}\n");
+  EXPECT_NE(m.find("case.yaml:11:18"), std::string::npos) << m;
+  EXPECT_NE(m.find("hertz, linear"), std::string::npos) << m;
+}
+
+TEST(NormalLawKeys, LinearNeedsExactlyOneWayToGiveTheStiffness) {
+  auto m = errors_of(kCase + "contact: {model: linear}\n");
+  EXPECT_NE(m.find("give exactly one of stiffness, contact_time or characteristic_velocity (0 given)"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("case.yaml:11:"), std::string::npos) << m;
+  m = errors_of(kCase + "contact: {model: linear, linear: {stiffness: 1.0e3, contact_time: 1.0e-4}}\n");
+  EXPECT_NE(m.find("(2 given)"), std::string::npos) << m;
+  m = errors_of(kCase + "contact: {model: linear, linear: {contact_time: 1.0e-4, damping: 1}}\n");
+  EXPECT_NE(m.find("damping goes with stiffness"), std::string::npos) << m;
+}
+
+TEST(NormalLawKeys, BadValuesAndUnknownKeysAreLocated) {
+  auto m = errors_of(kCase + "contact: {model: linear, linear: {stiffness: -1}}\n");
+  EXPECT_NE(m.find("case.yaml:11:46"), std::string::npos) << m;
+  EXPECT_NE(m.find("valid: > 0"), std::string::npos) << m;
+  m = errors_of(kCase + "contact: {model: linear, linear: {stifness: 1}}\n");
+  EXPECT_NE(m.find("did you mean 'stiffness'?"), std::string::npos) << m;
+}
+
+TEST(NormalLawKeys, AnotherLawsKeysOrTangentialAreRefused) {
+  auto m = errors_of(kCase + "contact: {linear: {stiffness: 1.0e3}}\n");
+  EXPECT_NE(m.find("keys of the linear law given, but contact.model is hertz"), std::string::npos) << m;
+  m = errors_of(kCase + "contact: {model: linear, tangential: mindlin, linear: {stiffness: 1.0e3}}\n");
+  EXPECT_NE(m.find("tangential: mindlin does not pair with model: linear; use 'linear'"), std::string::npos) << m;
+  m = errors_of(kCase + "contact: {tangential: linear}\n");
+  EXPECT_NE(m.find("use 'mindlin'"), std::string::npos) << m;
+}
+
+TEST(NormalLawKeys, TimeStepCheckedAgainstTheContactTime) {
+  // dt = 1e-6 s: refused above t_c / pi, warned about above t_c / 20.
+  auto m = errors_of(kCase + "contact: {model: linear, linear: {contact_time: 2.0e-6}}\n");
+  EXPECT_NE(m.find("case.yaml:10:"), std::string::npos) << m;
+  EXPECT_NE(m.find("is 0.5 contact times (t_c = 2e-06 s); above 0.3183"), std::string::npos) << m;
+  auto s = make_simulation(parse_case(kCase + "contact: {model: linear, linear: {contact_time: 1.0e-5}}\n", "case.yaml"));
+  ASSERT_EQ(s.c.scene.warnings.size(), 1u);
+  EXPECT_NE(s.c.scene.warnings[0].find("0.1 contact times"), std::string::npos) << s.c.scene.warnings[0];
+  auto quiet = make_simulation(parse_case(kCase + "contact: {model: linear, linear: {contact_time: 1.0e-4}}\n", "case.yaml"));
+  EXPECT_TRUE(quiet.c.scene.warnings.empty());
+}
+
+}  // namespace
+}  // namespace grains::io
