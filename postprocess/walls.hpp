@@ -1,46 +1,27 @@
 #pragma once
-// Walls read back from a frame's walls_NNNNNN.vtp (io/output/vtk_output.cpp
-// writes each plane as one quad, each cylinder as a ring of quads between
-// its bottom and top circles and each finite plane as a ring of quads between
-// its hole and its outer rim, with cell arrays `wall` numbering the walls and
-// `wall_type` telling the last two apart; files without `wall_type` have no
-// finite planes),
-// and the particle-wall contacts of a frame, so that coordination numbers of
-// particles resting on walls count those contacts too.
+// Walls read back from a frame's walls_NNNNNN.vtp and the particle-wall
+// contacts of a frame, so that coordination numbers of particles resting on
+// walls count those contacts too. io/output/vtk_output.cpp writes each wall's
+// record (its kind's record(), sim/walls/wall_kind.hpp) as a field-data array
+// `wall_<index>_<kind>`; the walls are rebuilt from those with the simulation's
+// own wall kinds, so `grains analyze` uses the contact geometry of the run.
 #include <filesystem>
 #include <vector>
 
 #include "postprocess/frame.hpp"
+#include "sim/walls/walls.hpp"
 
 namespace grains::postprocess {
 
-struct PlaneWall {
-  Vec3 point{0, 0, 0}, normal{0, 0, 1};  // unit normal; the side does not matter here
-};
+using WallSet = sim::Walls;
 
-struct CylinderWall {
-  Vec3 base{0, 0, 0}, axis{0, 0, 1};  // unit axis; base is the bottom circle's centre
-  double radius = 0, length = 0;
-};
-
-/// A finite plane: an annulus of radii r_in (hole) and r_out about centre.
-struct AnnulusWall {
-  Vec3 centre{0, 0, 0}, normal{0, 0, 1};
-  double r_in = 0, r_out = 0;
-};
-
-struct WallSet {
-  std::vector<PlaneWall> planes;
-  std::vector<CylinderWall> cylinders;
-  std::vector<AnnulusWall> annuli;
-  bool empty() const { return planes.empty() && cylinders.empty() && annuli.empty(); }
-};
-
-/// Throws std::runtime_error when the file cannot be read.
+/// Throws std::runtime_error when the file cannot be read or names a wall
+/// kind this build does not know.
 WallSet read_walls(const std::filesystem::path& vtp);
 
-/// Number of walls each particle touches (overlap > -gap). Spheres use their
-/// radius; ellipsoids their support distance along the wall normal.
+/// Number of walls each particle touches (overlap > -gap): spheres with
+/// their radius + gap, ellipsoids with their semi-axes + gap, through each
+/// wall kind's contact geometry.
 std::vector<int> wall_contacts(const Frame& f, const WallSet& w, double gap = 0);
 
 }  // namespace grains::postprocess

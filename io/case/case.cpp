@@ -1,6 +1,7 @@
 #include "io/case/case.hpp"
 #include "io/case/clump_shapes.hpp"
 #include "sim/laws/normal_laws.hpp"
+#include "sim/walls/wall_kinds.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -596,57 +597,53 @@ class CaseParser {
     }
   }
 
+  // A wall kind's own keys, read against its documentation (sim/walls/wall_kind.hpp).
+  class WallKeys final : public sim::KeyReader {
+   public:
+    WallKeys(Validator& v, const YAML::Node& map, const EffectDoc& d, std::string ctx)
+        : v_(v), map_(map), d_(d), ctx_(std::move(ctx)) {}
+    bool has(const std::string& k) const override { return static_cast<bool>(map_[k]); }
+    double number(const std::string& k, double fallback) override {
+      const double def = d_.find(k) ? d_.find(k)->default_number : fallback;
+      return v_.number(map_, d_, k, ctx_, def == def ? def : fallback);
+    }
+    Vec3 vec3(const std::string& k, const Vec3& fallback) override { return v_.vec3(map_, d_, k, ctx_, fallback); }
+    bool boolean(const std::string& k, bool fallback) override { return v_.boolean(map_, d_, k, ctx_, fallback); }
+    void error(const std::string& k, const std::string& msg) override {
+      v_.error(map_[k] ? map_[k] : map_, ctx_, msg);
+    }
+
+   private:
+    Validator& v_;
+    const YAML::Node& map_;
+    const EffectDoc& d_;
+    std::string ctx_;
+  };
+
   void parse_walls(const YAML::Node& n) {
     if (!n) return;
     if (!n.IsSequence()) {
       v_.error(n, "walls", "expected a list of walls");
       return;
     }
+    std::vector<std::string> kinds;
+    sim::for_each_type(sim::WallKinds{}, [&]<class K>() { kinds.push_back(K::kind); });
     for (std::size_t i = 0; i < n.size(); ++i) {
       const auto ctx = idx("walls", i);
       const YAML::Node w = n[i];
-      if (!check_type(w, ctx, "wall", {"plane", "cylinder"})) continue;
+      if (!check_type(w, ctx, "wall", kinds)) continue;
       const YAML::Node t = w["type"];
       const auto& d = doc("walls." + t.Scalar());
       if (!v_.check_map(w, d, ctx)) continue;
-      const std::string name = v_.string(w, d, "name", ctx, t.Scalar() + std::to_string(i));
-      const int mat = material(w, d, ctx);
-      const Vec3 vel = v_.vec3(w, d, "velocity", ctx);
-      if (t.Scalar() == "plane") {
-        sim::PlaneWall p;
-        p.name = name;
-        p.material = mat;
-        p.velocity = vel;
-        p.point = v_.vec3(w, d, "point", ctx);
-        p.normal = v_.vec3(w, d, "normal", ctx, Vec3(0, 0, 1));
-        if (p.normal.norm() == 0) {
-          v_.error(w["normal"], ctx, "normal must not be the zero vector");
-          p.normal = Vec3(0, 0, 1);
-        }
-        p.normal.normalize();
-        p.hole_radius = v_.number(w, d, "hole_radius", ctx, 0);
-        p.radius = v_.number(w, d, "radius", ctx, std::numeric_limits<double>::infinity());
-        if (w["radius"] && p.radius <= p.hole_radius)
-          v_.error(w["radius"], ctx, "radius must be larger than hole_radius (" + std::to_string(p.hole_radius) + " m)");
-        c_.scene.walls.planes.push_back(p);
-      } else {
-        sim::CylinderWall c;
-        c.name = name;
-        c.material = mat;
-        c.velocity = vel;
-        c.surface.base = v_.vec3(w, d, "base", ctx);
-        c.surface.axis = v_.vec3(w, d, "axis", ctx, Vec3(0, 0, 1));
-        if (c.surface.axis.norm() == 0) {
-          v_.error(w["axis"], ctx, "axis must not be the zero vector");
-          c.surface.axis = Vec3(0, 0, 1);
-        }
-        c.surface.axis.normalize();
-        c.surface.radius = v_.number(w, d, "radius", ctx, 1);
-        c.surface.t_min = 0;
-        c.surface.t_max = v_.number(w, d, "height", ctx, 1);
-        c.surface.inside = v_.boolean(w, d, "inside", ctx, true);
-        c_.scene.walls.cylinders.push_back(c);
-      }
+      sim::for_each_type(sim::WallKinds{}, [&]<class K>() {
+        if (t.Scalar() != K::kind) return;
+        WallKeys keys(v_, w, d, ctx);
+        K wall = K::from_keys(keys);
+        wall.name = v_.string(w, d, "name", ctx, t.Scalar() + std::to_string(i));
+        wall.material = material(w, d, ctx);
+        wall.velocity = v_.vec3(w, d, "velocity", ctx);
+        c_.scene.walls.add(wall);
+      });
     }
   }
 

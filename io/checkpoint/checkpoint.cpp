@@ -58,6 +58,13 @@ void write_bodies(const h5::File& f, sim::BodyStore& b, std::size_t offset, std:
   });
 }
 
+// Each wall's near list, by the walls' index across kinds.
+void write_wall_near(const h5::File& f, const std::vector<std::vector<std::uint32_t>>& near) {
+  f.group("/neighbor/wall_near");
+  for (std::size_t w = 0; w < near.size(); ++w)
+    f.write_vector("/neighbor/wall_near/" + std::to_string(w), near[w], 1, "");
+}
+
 void write_neighbors(const h5::File& f, const sim::NeighborList& nl) {
   f.group("/neighbor");
   const auto b = nl.build_state();
@@ -73,30 +80,25 @@ void write_neighbors(const h5::File& f, const sim::NeighborList& nl) {
   f.write_scalar("/neighbor/build_time", b.time, "s");
   f.write_scalar("/neighbor/builds", static_cast<std::int64_t>(b.builds), "");
   f.write_scalar("/neighbor/build_growth", b.growth, "m");
-  f.group("/neighbor/plane_near");
-  for (std::size_t w = 0; w < nl.plane_near.size(); ++w)
-    f.write_vector("/neighbor/plane_near/" + std::to_string(w), nl.plane_near[w], 1, "");
-  f.group("/neighbor/cylinder_near");
-  for (std::size_t w = 0; w < nl.cylinder_near.size(); ++w)
-    f.write_vector("/neighbor/cylinder_near/" + std::to_string(w), nl.cylinder_near[w], 1, "");
+  write_wall_near(f, nl.wall_near);
 }
 
+// The dataset of one kind's positions (e.g. /walls/plane_point, /walls/cylinder_base).
+template <class K>
+std::string wall_position_dataset() {
+  return std::string("/walls/") + K::kind + "_" + K::position_name;
+}
+
+// Each kind's moving reference points and velocities: what a restart needs
+// besides the case (the walls' shape comes from the case).
 void write_walls(const h5::File& f, const sim::Walls& walls) {
   f.group("/walls");
-  std::vector<sim::Vec3> pt, nrm, vel;
-  for (const auto& w : walls.planes) pt.push_back(w.point), nrm.push_back(w.normal), vel.push_back(w.velocity);
-  f.write_vector("/walls/plane_point", pt, 1, "m");
-  f.write_vector("/walls/plane_normal", nrm, 1, "");
-  f.write_vector("/walls/plane_velocity", vel, 1, "m/s");
-  std::vector<sim::Vec3> base, axis, cvel;
-  std::vector<double> radius;
-  for (const auto& w : walls.cylinders)
-    base.push_back(w.surface.base), axis.push_back(w.surface.axis), cvel.push_back(w.velocity),
-        radius.push_back(w.surface.radius);
-  f.write_vector("/walls/cylinder_base", base, 1, "m");
-  f.write_vector("/walls/cylinder_axis", axis, 1, "");
-  f.write_vector("/walls/cylinder_radius", radius, 1, "m");
-  f.write_vector("/walls/cylinder_velocity", cvel, 1, "m/s");
+  sim::for_each_type(sim::WallKinds{}, [&]<class K>() {
+    std::vector<sim::Vec3> pos, vel;
+    for (const auto& w : walls.of<K>()) pos.push_back(w.position()), vel.push_back(w.velocity);
+    f.write_vector(wall_position_dataset<K>(), pos, 1, "m");
+    f.write_vector(std::string("/walls/") + K::kind + "_velocity", vel, 1, "m/s");
+  });
 }
 
 // Hidden, so that listings never see it.
@@ -228,12 +230,7 @@ void write_checkpoint_parallel(const fs::path& file, sim::Scene& s, sim::IdBlock
     f.write_scalar("/neighbor/build_time", s.clock.time, "s");
     f.write_scalar("/neighbor/builds", static_cast<std::int64_t>(s.neighbors.stats().builds), "");
     f.write_scalar("/neighbor/build_growth", 0.0, "m");
-    f.group("/neighbor/plane_near");
-    for (std::size_t w = 0; w < s.walls.planes.size(); ++w)
-      f.write_vector("/neighbor/plane_near/" + std::to_string(w), std::vector<std::uint32_t>{}, 1, "");
-    f.group("/neighbor/cylinder_near");
-    for (std::size_t w = 0; w < s.walls.cylinders.size(); ++w)
-      f.write_vector("/neighbor/cylinder_near/" + std::to_string(w), std::vector<std::uint32_t>{}, 1, "");
+    write_wall_near(f, std::vector<std::vector<std::uint32_t>>(s.walls.count()));
     write_tail(f, s.walls, s.growth, b.lost_particles, x);
     f.close();  // H5Fflush (MPI_File_sync on every rank), then the collective close
   } catch (const std::exception& e) {
@@ -334,17 +331,24 @@ void read_neighbors(const h5::File& f, sim::Scene& s) {
   // Radius growth since the build (absent from checkpoints before 2026-11-21:
   // a growing run then rebuilds its list at its first step).
   if (f.exists("/neighbor/build_growth")) b.growth = f.read_scalar<double>("/neighbor/build_growth");
-  auto near = [&](const std::string& g, std::vector<std::vector<std::uint32_t>>& lists, std::size_t walls) {
-    lists.assign(walls, {});
-    for (std::size_t w = 0; w < walls; ++w) {
-      const std::string ds = g + "/" + std::to_string(w);
-      f.read_vector(ds, lists[w], f.shape(ds).first, 1);
-      for (auto i : lists[w])
+  // Near lists by the walls' index across kinds; checkpoints before
+  // 2026-11-26 kept planes' and cylinders' lists in groups of their own.
+  nl.wall_near.assign(s.walls.count(), {});
+  std::size_t w = 0;
+  auto near = [&](const std::string& group, std::size_t count) {
+    for (std::size_t k = 0; k < count; ++k, ++w) {
+      const std::string ds = group + "/" + std::to_string(k);
+      f.read_vector(ds, nl.wall_near[w], f.shape(ds).first, 1);
+      for (auto i : nl.wall_near[w])
         if (i >= n) throw CheckpointError(f.path() + ": wall near list out of range (corrupt checkpoint)");
     }
   };
-  near("/neighbor/plane_near", nl.plane_near, s.walls.planes.size());
-  near("/neighbor/cylinder_near", nl.cylinder_near, s.walls.cylinders.size());
+  if (f.exists("/neighbor/wall_near")) {
+    near("/neighbor/wall_near", s.walls.count());
+  } else {
+    near("/neighbor/plane_near", s.walls.of<sim::PlaneWall>().size());
+    near("/neighbor/cylinder_near", s.walls.of<sim::CylinderWall>().size());
+  }
   nl.restore(s.particles, std::move(b));
 }
 
@@ -361,12 +365,12 @@ void read_growth(const h5::File& f, sim::GrowthServo& g) {
 }
 
 void read_walls(const h5::File& f, sim::Walls& walls) {
-  std::vector<sim::Vec3> pt, base;
-  const std::size_t np = walls.planes.size(), nc = walls.cylinders.size();  // checked in check_compatible
-  f.read_vector("/walls/plane_point", pt, np, 1);
-  f.read_vector("/walls/cylinder_base", base, nc, 1);
-  for (std::size_t w = 0; w < np; ++w) walls.planes[w].point = pt[w];
-  for (std::size_t w = 0; w < nc; ++w) walls.cylinders[w].surface.base = base[w];
+  sim::for_each_type(sim::WallKinds{}, [&]<class K>() {
+    auto& ws = walls.of<K>();  // the count is checked in check_compatible
+    std::vector<sim::Vec3> pos;
+    if (!ws.empty()) f.read_vector(wall_position_dataset<K>(), pos, ws.size(), 1);
+    for (std::size_t w = 0; w < ws.size(); ++w) ws[w].position() = pos[w];
+  });
 }
 
 // Everything that must match between the checkpoint and the scene built from
@@ -388,11 +392,13 @@ void check_compatible(const h5::File& f, sim::Scene& s) {
                           ": the checkpoint was written for different contact-law slots");
   if (f.read_scalar<double>("/neighbor/skin") != s.neighbors.skin())
     throw CheckpointError(file + ": the neighbour skin differs from the case's (neighbor.skin must not change)");
-  const std::size_t np = f.shape("/walls/plane_point").first, nc = f.shape("/walls/cylinder_base").first;
-  if (np != s.walls.planes.size() || nc != s.walls.cylinders.size())
-    throw CheckpointError(file + ": " + std::to_string(np) + " plane and " + std::to_string(nc) +
-                          " cylinder walls, the case has " + std::to_string(s.walls.planes.size()) + " and " +
-                          std::to_string(s.walls.cylinders.size()));
+  sim::for_each_type(sim::WallKinds{}, [&]<class K>() {
+    const std::string ds = wall_position_dataset<K>();
+    const std::size_t have = f.exists(ds) ? f.shape(ds).first : 0, want = s.walls.of<K>().size();
+    if (have != want)
+      throw CheckpointError(file + ": " + std::to_string(have) + " " + K::kind + " wall(s), the case has " +
+                            std::to_string(want));
+  });
   const std::size_t n = particle_count(f);
   s.particles.visit_fields([&](const char* name, const char*, auto& vec, int width) {
     using T = typename std::decay_t<decltype(vec)>::value_type;

@@ -9,6 +9,7 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkIntArray.h>
 #include <vtkLongLongArray.h>
 #include <vtkNew.h>
@@ -322,79 +323,49 @@ std::string VtkOutput::write_bodies(const sim::Scene& s, const fs::path& file) c
   return piece_layout(grid);
 }
 
+// Every wall's cells (its kind's cells(), sim/walls/wall_kind.hpp), with
+// cell arrays `wall` (the walls' index across kinds) and `wall_kind` (the
+// kind's index in sim/walls/wall_kinds.hpp), and for each wall a field-data
+// array `wall_<index>_<kind>` holding its kind's record(), from which
+// `grains analyze` rebuilds it (postprocess/walls.hpp).
 void VtkOutput::write_walls(const sim::Scene& s, const fs::path& file) const {
   vtkNew<vtkPoints> pts;
   vtkNew<vtkCellArray> polys;
-  vtkNew<vtkIntArray> wall_id, wall_type;
+  vtkNew<vtkIntArray> wall_id, wall_kind;
   wall_id->SetName("wall");
-  wall_type->SetName("wall_type");  // 0 infinite plane, 1 cylinder, 2 finite plane (disc or annulus)
-  int w = 0;
+  wall_kind->SetName("wall_kind");
+  vtkNew<vtkPolyData> poly;
   const Vec3 c = 0.5 * (s.domain.lo + s.domain.hi);
   const double half = 0.5 * (s.domain.hi - s.domain.lo).norm();
-  for (const auto& pl : s.walls.planes) {
-    if (pl.finite()) {
-      // A ring of quads (inner k, inner k+1, outer k+1, outer k) between the
-      // hole and the outer rim; an unbounded annulus is drawn out to the
-      // domain's half diagonal beyond the hole's centre.
-      const Vec3 a = pl.normal.unitOrthogonal();
-      const Vec3 b = pl.normal.cross(a);
-      const double r_out = std::isfinite(pl.radius) ? pl.radius : (pl.point - c).norm() + half;
-      const int seg = 64;
+  int kind = 0;
+  std::size_t first_wall = 0;
+  sim::for_each_type(sim::WallKinds{}, [&]<class K>() {
+    const auto& walls = s.walls.of<K>();
+    for (std::size_t k = 0; k < walls.size(); ++k) {
+      const std::size_t w = first_wall + k;
+      sim::WallSurface surf;
+      walls[k].cells(surf, c, half);
       const vtkIdType first = pts->GetNumberOfPoints();
-      for (int k = 0; k < seg; ++k) {
-        const double t = 2 * M_PI * k / seg;
-        const Vec3 e = std::cos(t) * a + std::sin(t) * b;
-        pts->InsertNextPoint(Vec3(pl.point + pl.hole_radius * e).data());
-        pts->InsertNextPoint(Vec3(pl.point + r_out * e).data());
+      for (const auto& p : surf.points) pts->InsertNextPoint(p.data());
+      for (const auto& q : surf.quads) {
+        const vtkIdType ids[4] = {first + q[0], first + q[1], first + q[2], first + q[3]};
+        polys->InsertNextCell(4, ids);
+        wall_id->InsertNextValue(static_cast<int>(w));
+        wall_kind->InsertNextValue(kind);
       }
-      for (int k = 0; k < seg; ++k) {
-        const vtkIdType k2 = (k + 1) % seg;
-        vtkIdType q[4] = {first + 2 * k, first + 2 * k2, first + 2 * k2 + 1, first + 2 * k + 1};
-        polys->InsertNextCell(4, q);
-        wall_id->InsertNextValue(w);
-        wall_type->InsertNextValue(2);
-      }
-      ++w;
-      continue;
+      const auto rec = walls[k].record();
+      vtkNew<vtkDoubleArray> r;
+      r->SetName(("wall_" + std::to_string(w) + "_" + K::kind).c_str());
+      for (double v : rec) r->InsertNextValue(v);
+      poly->GetFieldData()->AddArray(r);
     }
-    // A square on the plane, centred at the projection of the domain centre,
-    // as wide as the domain's diagonal.
-    const Vec3 o = c - pl.normal * pl.normal.dot(c - pl.point);
-    const Vec3 a = pl.normal.unitOrthogonal();
-    const Vec3 b = pl.normal.cross(a);
-    vtkIdType ids[4];
-    const double sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
-    for (int k = 0; k < 4; ++k) ids[k] = pts->InsertNextPoint(Vec3(o + half * (sx[k] * a + sy[k] * b)).data());
-    polys->InsertNextCell(4, ids);
-    wall_id->InsertNextValue(w++);
-    wall_type->InsertNextValue(0);
-  }
-  for (const auto& cy : s.walls.cylinders) {
-    const auto& sf = cy.surface;
-    const Vec3 a = sf.axis.unitOrthogonal();
-    const Vec3 b = sf.axis.cross(a);
-    const int seg = 64;
-    const vtkIdType first = pts->GetNumberOfPoints();
-    for (int k = 0; k < seg; ++k) {
-      const double t = 2 * M_PI * k / seg;
-      const Vec3 r = sf.radius * (std::cos(t) * a + std::sin(t) * b);
-      pts->InsertNextPoint(Vec3(sf.base + sf.axis * sf.t_min + r).data());
-      pts->InsertNextPoint(Vec3(sf.base + sf.axis * sf.t_max + r).data());
-    }
-    for (int k = 0; k < seg; ++k) {
-      const vtkIdType k2 = (k + 1) % seg;
-      vtkIdType q[4] = {first + 2 * k, first + 2 * k2, first + 2 * k2 + 1, first + 2 * k + 1};
-      polys->InsertNextCell(4, q);
-      wall_id->InsertNextValue(w);
-      wall_type->InsertNextValue(1);
-    }
-    ++w;
-  }
-  vtkNew<vtkPolyData> poly;
+    first_wall += walls.size();
+    ++kind;
+  });
   poly->SetPoints(pts);
   poly->SetPolys(polys);
   poly->GetCellData()->AddArray(wall_id);
-  poly->GetCellData()->AddArray(wall_type);
+  poly->GetCellData()->AddArray(wall_kind);
   vtkNew<vtkXMLPolyDataWriter> wr;
   wr->SetInputData(poly);
   write_or_throw(wr.Get(), file);

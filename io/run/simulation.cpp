@@ -334,8 +334,7 @@ std::string describe(const Simulation& s) {
   o << "case: " << s.c.path << "\n";
   o << "particles: " << sc.particles.n_owned();
   if (sc.bodies.size() > 0) o << " (of which the balls of " << sc.bodies.size() << " clumps)";
-  o << " in " << s.c.scene.sets.size() << " set(s); walls: "
-    << sc.walls.planes.size() << " plane(s), " << sc.walls.cylinders.size() << " cylinder(s)\n";
+  o << " in " << s.c.scene.sets.size() << " set(s); walls: " << sc.walls.describe() << "\n";
   o << "time step: " << sc.clock.dt << " s (" << sc.clock.dt / s.rayleigh_time << " Rayleigh times), "
     << sc.clock.n_steps << " steps to t = " << sc.clock.end_time << " s\n";
   o << "contact history per contact: " << sc.neighbors.history_size() << " doubles\n";

@@ -86,45 +86,19 @@ bool Obstacles::part_free(const Vec3& x, double bound, bool ell, const contact::
 }
 
 bool Obstacles::clear_of_walls(const GrainParts& g) const {
-  contact::ContactGeometry cg;
+  bool clear = true;
   if (g.ellipsoid) {
     contact::Ellipsoid e;
     e.centre = g.ell_centre;
     e.semi_axes = g.ell_axes;
     e.orientation = g.ell_orientation;
-    for (const auto& w : walls_.planes) {
-      if (w.finite()) {
-        if (contact::ellipsoid_annulus_contacts(e, w.annulus()).count > 0) return false;
-        continue;
-      }
-      bool touching = false;
-      contact::ellipsoid_plane_contact(e, contact::PlaneWall{w.point, w.normal}, &touching);
-      if (touching) return false;
-    }
-    for (const auto& w : walls_.cylinders) {
-      contact::CylinderWall cw;
-      cw.axis_point = w.surface.base;
-      cw.axis = w.surface.axis;
-      cw.radius = w.surface.radius;
-      cw.z_min = w.surface.t_min;
-      cw.z_max = w.surface.t_max;
-      cw.inside = w.surface.inside;
-      bool touching = false;
-      contact::ellipsoid_cylinder_contact(e, cw, &touching);
-      if (touching) return false;
-    }
-    return true;
+    walls_.for_each([&](const auto& w, std::size_t) { clear = clear && !w.touches(e); });
+    return clear;
   }
-  for (std::size_t k = 0; k < g.radii.size(); ++k) {
-    const Vec3& x = g.centres[k];
-    const double r = g.radii[k];
-    for (const auto& w : walls_.planes)
-      if (w.finite() ? contact::sphere_annulus(x, r, w.annulus(), cg) : contact::sphere_plane(x, r, w.point, w.normal, cg))
-        return false;
-    for (const auto& w : walls_.cylinders)
-      if (contact::sphere_cylinder(x, r, w.surface, cg)) return false;
-  }
-  return true;
+  walls_.for_each([&](const auto& w, std::size_t) {
+    for (std::size_t k = 0; clear && k < g.radii.size(); ++k) clear = !w.touches(g.centres[k], g.radii[k]);
+  });
+  return clear;
 }
 
 bool Obstacles::fits(const GrainParts& g) const {

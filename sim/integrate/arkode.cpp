@@ -386,11 +386,10 @@ void ErkDriver::pack() {
     auto add = [&](const std::vector<std::uint32_t>& near, int slot) {
       for (const auto i : near) wall_entry_.push_back(i * WH + static_cast<std::size_t>(slot) * 2 * H_);
     };
-    for (std::size_t w = 0; w < s.walls.planes.size() && w < nl.plane_near.size(); ++w)
-      for (int k = 0; k < s.walls.planes[w].history_slots; ++k)
-        add(nl.plane_near[w], s.walls.planes[w].history_slot + k);
-    for (std::size_t w = 0; w < s.walls.cylinders.size() && w < nl.cylinder_near.size(); ++w)
-      add(nl.cylinder_near[w], s.walls.cylinders[w].history_slot);
+    s.walls.for_each([&](const auto& wall, std::size_t w) {
+      if (w >= nl.wall_near.size()) return;
+      for (int k = 0; k < wall.history_slots; ++k) add(nl.wall_near[w], wall.history_slot + k);
+    });
   }
   const std::size_t n = walls_offset() + wall_entry_.size() * static_cast<std::size_t>(H_);
   const bool resize = mem_ && n != n_state_;

@@ -14,7 +14,7 @@
 #include "contact/contact_geometry.hpp"
 #include "sim/laws/cohesion.hpp"
 #include "sim/laws/normal_laws.hpp"
-#include "sim/laws/registry.hpp"
+#include "sim/registry.hpp"
 #include "sim/laws/rolling.hpp"
 #include "sim/laws/tangential.hpp"
 

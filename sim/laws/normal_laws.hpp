@@ -17,7 +17,7 @@
 // (docs/architecture.md: how to add one).
 #include "sim/laws/normal_hertz.hpp"
 #include "sim/laws/normal_linear.hpp"
-#include "sim/laws/registry.hpp"
+#include "sim/registry.hpp"
 
 namespace grains::sim {
 

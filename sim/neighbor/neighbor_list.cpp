@@ -167,41 +167,12 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   if (with_gather_) build_gather(p);
 
   // Wall near lists (owned particles only: walls act on what a rank integrates).
-  plane_near.assign(walls.planes.size(), {});
-  cylinder_near.assign(walls.cylinders.size(), {});
-  for (std::size_t w = 0; w < walls.planes.size(); ++w) {
-    const auto& wall = walls.planes[w];
-    if (wall.finite()) {  // a disc or annulus, touched from both sides and on its rims
-      const auto a = wall.annulus();
-      for (std::size_t i = 0; i < n_own; ++i) {
-        const double reach = p.radius[i] + skin_;
-        if ((p.x[i] - contact::annulus_nearest(p.x[i], a)).squaredNorm() < reach * reach)
-          plane_near[w].push_back(static_cast<std::uint32_t>(i));
-      }
-      continue;
-    }
+  const bool shapes = p.fields().has(Field::SemiAxes);
+  wall_near.assign(walls.count(), {});
+  walls.for_each([&](const auto& wall, std::size_t w) {
     for (std::size_t i = 0; i < n_own; ++i)
-      if (contact::plane_distance(p.x[i], wall.point, wall.normal) < p.radius[i] + skin_)
-        plane_near[w].push_back(static_cast<std::uint32_t>(i));
-  }
-  for (std::size_t w = 0; w < walls.cylinders.size(); ++w) {
-    auto s = walls.cylinders[w].surface;  // widened by the skin
-    s.t_min -= skin_;
-    s.t_max += skin_;
-    s.radius += s.inside ? -skin_ : skin_;
-    contact::ContactGeometry g;
-    // A non-spherical particle (radius = its bounding sphere) may touch the
-    // wall at a point up to its radius along the axis from its centre.
-    const bool shapes = p.fields().has(Field::SemiAxes);
-    for (std::size_t i = 0; i < n_own; ++i) {
-      auto si = s;
-      if (shapes) {
-        si.t_min -= p.radius[i];
-        si.t_max += p.radius[i];
-      }
-      if (contact::sphere_cylinder(p.x[i], p.radius[i], si, g)) cylinder_near[w].push_back(static_cast<std::uint32_t>(i));
-    }
-  }
+      if (wall.near(p.x[i], p.radius[i], skin_, shapes)) wall_near[w].push_back(static_cast<std::uint32_t>(i));
+  });
 
   x_build_.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(n_own));
   build_time_ = time;

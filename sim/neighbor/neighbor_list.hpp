@@ -101,7 +101,8 @@ class NeighborList {
     bool may_touch;
   };
   std::vector<PairConstants> pair_constants;
-  std::vector<std::vector<std::uint32_t>> plane_near, cylinder_near;  // per wall
+  /// Per wall (Walls' index across kinds): the owned particles near it.
+  std::vector<std::vector<std::uint32_t>> wall_near;
 
   const Stats& stats() const { return stats_; }
 

@@ -116,8 +116,7 @@ Scene gather_scene(Scene& s) {
     nl.partner.push_back(entries[k].second);
     nl.history.insert(nl.history.end(), hs[k]->begin(), hs[k]->end());
   }
-  nl.plane_near.assign(g.walls.planes.size(), {});
-  nl.cylinder_near.assign(g.walls.cylinders.size(), {});
+  nl.wall_near.assign(g.walls.count(), {});
   NeighborList::BuildState b;
   b.time = s.clock.time;
   b.row_id = gp.id;  // no build positions: the next step rebuilds

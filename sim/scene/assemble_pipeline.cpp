@@ -26,13 +26,11 @@ template <class Law>
 void add_contact_stages(Pipeline& p, const SceneNeeds& n) {
   if (n.ellipsoids) {
     p.add(std::make_unique<ShapePairContactStage<Law>>());
-    if (n.planes) p.add(std::make_unique<PlaneWallStage<Law, true>>());
-    if (n.cylinders) p.add(std::make_unique<CylinderWallStage<Law, true>>());
+    if (n.walls) p.add(std::make_unique<WallStage<Law, true>>());
     return;
   }
   p.add(std::make_unique<PairContactStage<Law>>());
-  if (n.planes) p.add(std::make_unique<PlaneWallStage<Law>>());
-  if (n.cylinders) p.add(std::make_unique<CylinderWallStage<Law>>());
+  if (n.walls) p.add(std::make_unique<WallStage<Law>>());
 }
 
 // With ARKODE the law's history is part of the ODE state (laws with history only).

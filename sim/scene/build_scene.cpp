@@ -94,8 +94,7 @@ SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs) {
   for (const auto& ins : c.insertions) shapes(ins.grains);
   n.rotation = n.tangential || n.rolling || n.ellipsoids;
   n.gravity = c.gravity.squaredNorm() > 0;
-  n.planes = !c.walls.planes.empty();
-  n.cylinders = !c.walls.cylinders.empty();
+  n.walls = c.walls.count() > 0;
   n.moving_walls = c.walls.max_displacement(1.0) > 0;
   n.history_size = (n.tangential ? 3 : 0) + (n.rolling ? 3 : 0);
   if (c.integrator == Integrator::Arkode && n.history_size > 0) {
@@ -208,12 +207,11 @@ Scene build_scene(SceneConfig& c) {
 
   // Walls get history slots when the law keeps history.
   int slot = 0;
-  for (auto& w : s.walls.planes) {
+  s.walls.for_each([&](auto& w, std::size_t) {
     w.history_slot = slot;
-    w.history_slots = need.ellipsoids && w.finite() ? 2 : 1;
+    w.history_slots = w.slots(need.ellipsoids);
     slot += w.history_slots;
-  }
-  for (auto& w : s.walls.cylinders) w.history_slot = slot++;
+  });
   s.particles.configure(need.fields, slot * need.history_size);
 
   // Particles.

@@ -15,7 +15,7 @@ struct SceneNeeds {
   bool rotation = false;
   bool ellipsoids = false;  // some particle is non-spherical: rigid-body integrator, shape dispatch
   bool clumps = false;      // some set is made of rigid clumps: body field, BodyStore and its stages
-  bool gravity = false, planes = false, cylinders = false, moving_walls = false;
+  bool gravity = false, walls = false, moving_walls = false;
   int history_size = 0;  // per contact (doubles of the neighbour list's history per entry, without PW85's)
   // ARKODE: the law's history is part of the ODE state; each contact keeps
   // [state | rate] (integrate/history_state_law.hpp), history_size is doubled.

@@ -23,7 +23,7 @@ std::vector<EffectDoc> scene_docs() {
                 key("materials", K::List, "materials (see materials)").req(),
                 key("contact", K::Map, "contact law slots and pair overrides (see contact)"),
                 key("particles", K::List, "particle sets (see particles)").req(),
-                key("walls", K::List, "walls (see walls.plane, walls.cylinder)"),
+                key("walls", K::List, "walls (see walls.<type>: one section per wall kind)"),
                 key("time", K::Map, "time stepping (see time)").req(),
                 key("neighbor", K::Map, "neighbour lists (see neighbor)"),
                 key("parallel", K::Map, "threads and MPI ranks (see parallel)"),

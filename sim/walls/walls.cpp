@@ -6,14 +6,20 @@ namespace grains::sim {
 
 double Walls::max_displacement(double t) const {
   double m = 0;
-  for (const auto& w : planes) m = std::max(m, w.velocity.norm() * t);
-  for (const auto& w : cylinders) m = std::max(m, w.velocity.norm() * t);
+  for_each([&](const auto& w, std::size_t) { m = std::max(m, w.velocity.norm() * t); });
   return m;
 }
 
+std::string Walls::describe() const {
+  std::string out;
+  for_each_type(WallKinds{}, [&]<class K>() {
+    out += (out.empty() ? "" : ", ") + std::to_string(of<K>().size()) + " " + K::kind + "(s)";
+  });
+  return out;
+}
+
 void Walls::advance(double dt) {
-  for (auto& w : planes) w.point += w.velocity * dt;
-  for (auto& w : cylinders) w.surface.base += w.velocity * dt;
+  for_each([&](auto& w, std::size_t) { w.translate(w.velocity * dt); });
 }
 
 }  // namespace grains::sim

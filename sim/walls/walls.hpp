@@ -1,54 +1,68 @@
 #pragma once
-// Walls: planes (infinite and one-sided, or finite: a disc or an annulus,
-// e.g. a silo bottom with an orifice) and finite cylinder surfaces, each
-// optionally moving with a prescribed constant velocity. A wall has a material (for the pair
-// table) and, when the contact law keeps history, a slot in every particle's
-// wall-history field.
-#include <limits>
+// The walls of a scene, kept by kind (wall_kinds.hpp), each optionally moving
+// with a prescribed constant velocity. A wall has a material (for the pair
+// table) and, when the contact law keeps history, slots in every particle's
+// wall-history field. Walls have one index across kinds ("wall w"), in the
+// registry's kind order: near lists and output use it.
+#include <cstddef>
 #include <string>
+#include <tuple>
 #include <vector>
 
-#include "contact/cylinder.hpp"
-#include "contact/plane.hpp"
+#include "sim/walls/wall_kinds.hpp"
 
 namespace grains::sim {
 
-using contact::Vec3;
-
-struct PlaneWall {
-  std::string name;
-  Vec3 point{0, 0, 0};   // on the plane; the centre of the disc and of its hole when finite
-  Vec3 normal{0, 0, 1};  // unit; particles are on this side (infinite planes)
-  Vec3 velocity{0, 0, 0};
-  int material = 0;
-  int history_slot = 0;
-  /// History slots from history_slot on: 2 for a finite plane in a scene with
-  /// ellipsoids (a grain can touch an annulus at two places), else 1.
-  int history_slots = 1;
-  /// A hole of this radius about `point` (0: none) and an outer radius
-  /// (infinite: none). With either, the wall is a zero-thickness annulus
-  /// touched on both faces and on its rims (contact/plane.hpp).
-  double hole_radius = 0;
-  double radius = std::numeric_limits<double>::infinity();
-  bool finite() const { return hole_radius > 0 || radius < std::numeric_limits<double>::infinity(); }
-  contact::Annulus annulus() const { return {point, normal, hole_radius, radius}; }
-};
-
-struct CylinderWall {
-  std::string name;
-  contact::CylinderSurface surface{};
-  Vec3 velocity{0, 0, 0};
-  int material = 0;
-  int history_slot = 0;
+template <class List>
+struct WallVectors;
+template <class... Ks>
+struct WallVectors<TypeList<Ks...>> {
+  using type = std::tuple<std::vector<Ks>...>;
 };
 
 struct Walls {
-  std::vector<PlaneWall> planes;
-  std::vector<CylinderWall> cylinders;
-  std::size_t count() const { return planes.size() + cylinders.size(); }
+  typename WallVectors<WallKinds>::type by_kind;
+
+  template <class K>
+  std::vector<K>& of() {
+    return std::get<std::vector<K>>(by_kind);
+  }
+  template <class K>
+  const std::vector<K>& of() const {
+    return std::get<std::vector<K>>(by_kind);
+  }
+  template <class K>
+  void add(const K& w) {
+    of<K>().push_back(w);
+  }
+
+  /// f(wall, w) for every wall, w its index across kinds.
+  template <class F>
+  void for_each(F&& f) {
+    std::size_t w = 0;
+    std::apply([&](auto&... v) { ((for_vector(v, f, w)), ...); }, by_kind);
+  }
+  template <class F>
+  void for_each(F&& f) const {
+    std::size_t w = 0;
+    std::apply([&](const auto&... v) { ((for_vector(v, f, w)), ...); }, by_kind);
+  }
+  std::size_t count() const {
+    std::size_t n = 0;
+    for_each([&](const auto&, std::size_t) { ++n; });
+    return n;
+  }
+  /// "2 plane(s), 1 cylinder(s)": the count of every registered kind.
+  std::string describe() const;
   /// Largest distance any wall has moved in time t.
   double max_displacement(double t) const;
   void advance(double dt);
+
+ private:
+  template <class V, class F>
+  static void for_vector(V& v, F& f, std::size_t& w) {
+    for (auto& x : v) f(x, w++);
+  }
 };
 
 }  // namespace grains::sim

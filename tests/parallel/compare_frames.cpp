@@ -6,12 +6,21 @@
 //       Exit 0 when they agree, 1 when not (with the worst particle named).
 //   compare_frames --track ID OUT
 //       prints "time x y z fx fy fz" of particle ID for every frame.
+//   compare_frames --wall-cells A.vtp B.vtp
+//       the wall surfaces of two walls_NNNNNN.vtp files: the same points
+//       (bitwise) and the same cells; exit 0 when they are.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <map>
 #include <string>
+
+#include <vtkCellArray.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataReader.h>
 
 #include "postprocess/frame.hpp"
 
@@ -41,10 +50,46 @@ int track(std::int64_t id, const std::string& out) {
 
 }  // namespace
 
+int wall_cells(const std::string& a, const std::string& b) {
+  vtkNew<vtkXMLPolyDataReader> ra, rb;
+  ra->SetFileName(a.c_str());
+  rb->SetFileName(b.c_str());
+  ra->Update();
+  rb->Update();
+  vtkPolyData* A = ra->GetOutput();
+  vtkPolyData* B = rb->GetOutput();
+  if (!A || !B || A->GetNumberOfPoints() != B->GetNumberOfPoints() || A->GetNumberOfCells() != B->GetNumberOfCells()) {
+    std::cerr << a << " and " << b << ": different point or cell counts\n";
+    return 1;
+  }
+  for (vtkIdType k = 0; k < A->GetNumberOfPoints(); ++k) {
+    double x[3], y[3];
+    A->GetPoint(k, x);
+    B->GetPoint(k, y);
+    if (x[0] != y[0] || x[1] != y[1] || x[2] != y[2]) {
+      std::cerr << a << " and " << b << ": point " << k << " differs\n";
+      return 1;
+    }
+  }
+  vtkNew<vtkIdList> ia, ib;
+  for (vtkIdType c = 0; c < A->GetNumberOfCells(); ++c) {
+    A->GetCellPoints(c, ia);
+    B->GetCellPoints(c, ib);
+    bool same = ia->GetNumberOfIds() == ib->GetNumberOfIds();
+    for (vtkIdType k = 0; same && k < ia->GetNumberOfIds(); ++k) same = ia->GetId(k) == ib->GetId(k);
+    if (!same) {
+      std::cerr << a << " and " << b << ": cell " << c << " differs\n";
+      return 1;
+    }
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
   std::vector<std::string> a(argv + 1, argv + argc);
   try {
     if (a.size() == 3 && a[0] == "--track") return track(std::stoll(a[1]), a[2]);
+    if (a.size() == 3 && a[0] == "--wall-cells") return wall_cells(a[1], a[2]);
     if (a.size() < 2) {
       std::cerr << "usage: compare_frames A_OUT B_OUT [--tol METRES] [--frames all|last]\n"
                    "       compare_frames --track ID OUT\n";

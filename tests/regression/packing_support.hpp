@@ -324,7 +324,7 @@ inline Discharge discharge(const Silo& filled, double D, const SiloConfig& c) {
   const std::string path = std::string(GRAINS_SOURCE_DIR) + "/cases/silo_discharge/case.yaml";
   io::Simulation s = io::make_simulation(io::Case(filled.sim.c));
   s.scene = filled.sim.scene;  // the settled state, continued
-  s.scene.walls.planes[0].hole_radius = D / 2;
+  s.scene.walls.of<sim::PlaneWall>()[0].hole_radius = D / 2;
   const double t0 = s.scene.clock.time;
   const std::int64_t every = std::max<std::int64_t>(1, std::llround(0.002 / s.scene.clock.dt));
   const auto steps = static_cast<std::int64_t>(std::ceil((c.transient + c.window) / s.scene.clock.dt));

@@ -200,7 +200,7 @@ TEST(ClumpDynamics, SphereScenePipelineIsUnchanged) {
       "neighbor: neighbor.verlet_list(skin trigger)",
       "force: force.clear+torque+gravity",
       "force: force.pair_contacts<hertz+tangential:mindlin+rolling:none+cohesion:none>",
-      "force: force.plane_walls<hertz+tangential:mindlin+rolling:none+cohesion:none>",
+      "force: force.walls<hertz+tangential:mindlin+rolling:none+cohesion:none>",
       "kick: verlet.kick+rotation"};
   EXPECT_EQ(spheres.pipeline.stage_names(), expected);
   EXPECT_FALSE(spheres.scene.particles.fields().has(sim::Field::Body));
@@ -218,7 +218,7 @@ TEST(ClumpDynamics, SphereScenePipelineIsUnchanged) {
       "neighbor: neighbor.verlet_list(skin trigger)",
       "force: force.clear+torque+gravity(clump balls: 0)",
       "force: force.pair_contacts<hertz+tangential:mindlin+rolling:none+cohesion:none>",
-      "force: force.plane_walls<hertz+tangential:mindlin+rolling:none+cohesion:none>",
+      "force: force.walls<hertz+tangential:mindlin+rolling:none+cohesion:none>",
       "force: force.clump_sum(balls -> bodies)",
       "kick: verlet.kick+rotation(free particles)",
       "kick: clump.kick+ball_velocities"};

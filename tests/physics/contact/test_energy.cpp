@@ -22,7 +22,7 @@ double total_energy(const sim::Scene& s) {
       const double R = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
       e += 0.4 * (4.0 / 3.0) * pp.E_eff * std::sqrt(R) * std::pow(d, 2.5);
     }
-    for (const auto& w : s.walls.planes) {
+    for (const auto& w : s.walls.of<sim::PlaneWall>()) {
       const double d = p.radius[i] - w.normal.dot(p.x[i] - w.point);
       if (d <= 0) continue;
       const auto& pp = s.pairs(p.material[i], w.material);

@@ -53,7 +53,7 @@ time: {dt_rayleigh: 0.05, end: 0.03}
   EXPECT_NE(s.pipeline.stage_names()[1].find("walls.move"), std::string::npos);
   s.pipeline.initialize(s.scene);
   while (s.scene.clock.step < s.scene.clock.n_steps) s.pipeline.step(s.scene);
-  EXPECT_NEAR(s.scene.walls.planes[0].point.x(), 0.1 * s.scene.clock.time, 1e-12);
+  EXPECT_NEAR(s.scene.walls.of<sim::PlaneWall>()[0].point.x(), 0.1 * s.scene.clock.time, 1e-12);
   EXPECT_NEAR(s.scene.particles.v[0].x(), 0.2, 0.2 * 0.005);
 }
 

@@ -57,7 +57,7 @@ TEST(IntegratorKeys, ArkodeWithTolerancesAndOrder) {
       "neighbor: neighbor.verlet_list(skin trigger)",
       "force: force.clear+torque+gravity",
       "force: force.pair_contacts<hertz+tangential:mindlin+rolling:none+cohesion:none+history:ode_state>",
-      "force: force.plane_walls<hertz+tangential:mindlin+rolling:none+cohesion:none+history:ode_state>"};
+      "force: force.walls<hertz+tangential:mindlin+rolling:none+cohesion:none+history:ode_state>"};
   EXPECT_EQ(s.pipeline.stage_names(), stages);
   EXPECT_EQ(s.scene.neighbors.history_size(), 6);
   EXPECT_EQ(s.scene.particles.wall_history_size(), 6);

@@ -90,8 +90,8 @@ inline void expect_same_state(sim::Scene& a, sim::Scene& b) {
   const auto ba = a.neighbors.build_state(), bb = b.neighbors.build_state();
   EXPECT_EQ(ba.builds, bb.builds);
   EXPECT_TRUE(bytes(ba.x) == bytes(bb.x)) << "build positions differ";
-  ASSERT_EQ(a.walls.planes.size(), b.walls.planes.size());
-  for (std::size_t w = 0; w < a.walls.planes.size(); ++w) EXPECT_EQ(a.walls.planes[w].point, b.walls.planes[w].point);
+  ASSERT_EQ(a.walls.of<sim::PlaneWall>().size(), b.walls.of<sim::PlaneWall>().size());
+  for (std::size_t w = 0; w < a.walls.of<sim::PlaneWall>().size(); ++w) EXPECT_EQ(a.walls.of<sim::PlaneWall>()[w].point, b.walls.of<sim::PlaneWall>()[w].point);
   EXPECT_EQ(a.lost_particles, b.lost_particles);
   EXPECT_EQ(std::memcmp(&ba.growth, &bb.growth, sizeof(double)), 0) << "list growth since the build differs";
   const auto& ga = a.growth;

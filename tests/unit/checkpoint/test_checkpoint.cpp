@@ -41,9 +41,8 @@ TEST(Checkpoint, RoundTripRestoresEveryFieldListAndWall) {
     const auto& pb = b.scene.neighbors.pair_constants[k];
     ASSERT_TRUE(pa.contact2 == pb.contact2 && pa.radius == pb.radius && pa.mass == pb.mass) << "entry " << k;
   }
-  EXPECT_EQ(a.scene.neighbors.plane_near, b.scene.neighbors.plane_near);
-  EXPECT_EQ(a.scene.neighbors.cylinder_near, b.scene.neighbors.cylinder_near);
-  EXPECT_GT(a.scene.walls.planes[0].point.z(), 0.0);  // the floor moved, and came back moved
+  EXPECT_EQ(a.scene.neighbors.wall_near, b.scene.neighbors.wall_near);
+  EXPECT_GT(a.scene.walls.of<sim::PlaneWall>()[0].point.z(), 0.0);  // the floor moved, and came back moved
 
   // Readable by any HDF5 tool: units as attributes, format tags.
   const auto f = io::h5::File::open_read(file.string());
@@ -228,7 +227,7 @@ TEST(Checkpoint, RefusesACheckpointOfADifferentCase) {
   expect_error({"time.dt=4.0e-6"}, "a restart keeps the time step");
   expect_error({"materials.0.rolling_friction=0"}, "different contact-law slots");
   expect_error({"walls.1={type: plane, name: lid, point: [0, 0, 0.03], normal: [0, 0, -1], material: grain}"},
-               "1 cylinder walls, the case has 2 and 0");
+               "1 plane wall(s), the case has 2");
   EXPECT_THROW(io::checkpoint_info(tmp.path / "missing.h5"), io::CheckpointError);
 }
 

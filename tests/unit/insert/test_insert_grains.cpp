@@ -121,8 +121,8 @@ TEST(InsertGrains, SpheresInABedOverlapNothingWithBothMethods) {
   ASSERT_GT(bed.sphere_r.size(), 100u);
   const Domain d = box(L);
   Walls walls;  // a floor at z = 0.05 cuts through the bed's bottom layer
-  walls.planes.push_back({});
-  walls.planes.back().point = Vec3(0, 0, 0.05);
+  walls.of<sim::PlaneWall>().push_back({});
+  walls.of<sim::PlaneWall>().back().point = Vec3(0, 0, 0.05);
   for (Method m : {Method::Fft, Method::Random}) {
     const auto c = config(m, 0.04, 60, Vec3::Zero(), Vec3::Constant(L));
     InsertStats st;
@@ -184,12 +184,12 @@ TEST(InsertGrains, EllipsoidsAmongSpheresAndEllipsoidsAgainstWalls) {
       s.sphere_r.push_back(bed.sphere_r[i]);
     }
   Walls walls;
-  walls.planes.push_back({});
-  walls.planes.back().point = Vec3(0, 0, 0.1);
-  walls.cylinders.push_back({});
-  walls.cylinders.back().surface = {Vec3(0.5, 0.5, 0), Vec3(0, 0, 1), 0.48, 0.0, 1.0, true};
-  walls.cylinders.push_back({});  // a post in the middle: grains stay outside it
-  walls.cylinders.back().surface = {Vec3(0.5, 0.5, 0), Vec3(0, 0, 1), 0.1, 0.0, 1.0, false};
+  walls.of<sim::PlaneWall>().push_back({});
+  walls.of<sim::PlaneWall>().back().point = Vec3(0, 0, 0.1);
+  walls.of<sim::CylinderWall>().push_back({});
+  walls.of<sim::CylinderWall>().back().surface = {Vec3(0.5, 0.5, 0), Vec3(0, 0, 1), 0.48, 0.0, 1.0, true};
+  walls.of<sim::CylinderWall>().push_back({});  // a post in the middle: grains stay outside it
+  walls.of<sim::CylinderWall>().back().surface = {Vec3(0.5, 0.5, 0), Vec3(0, 0, 1), 0.1, 0.0, 1.0, false};
   for (Method m : {Method::Fft, Method::Random}) {
     auto c = config(m, 0.06, 40, Vec3::Zero(), Vec3::Constant(L));
     c.grains.shape.kind = ShapeConfig::Kind::Ellipsoid;

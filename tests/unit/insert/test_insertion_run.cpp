@@ -82,7 +82,7 @@ class CheckInserted final : public sim::Stage {
       if (p.id[i] < first_) continue;
       ++inserted;
       const bool ei = ell && p.shape[i] == sim::kEllipsoid;
-      for (const auto& w : s.walls.planes) {
+      for (const auto& w : s.walls.of<sim::PlaneWall>()) {
         const double h = ei ? contact::support(p.form[i], w.normal) : p.radius[i];
         if ((p.x[i] - w.point).dot(w.normal) < h) ++overlaps;
       }

@@ -108,7 +108,7 @@ void check_wall_law(const NormalLawChoice& normal) {
   s.pairs = PairTable(s.materials, {}, normal);
   PlaneWall w;
   w.normal = Vec3(0, 0, 1);
-  s.walls.planes.push_back(w);
+  s.walls.of<sim::PlaneWall>().push_back(w);
   s.particles.configure(FieldSet(Field::AngularVelocity) | Field::Torque | Field::Inertia | Field::WallHistory,
                         Law::history_size);
   s.particles.add(0, Vec3(0, 0, 0.0101), Vec3(0.1, 0, -0.1), 0.01, 1e-3, 0);
@@ -116,7 +116,7 @@ void check_wall_law(const NormalLawChoice& normal) {
   s.clock.dt = 1e-6;
   s.neighbors.configure(Law::history_size, 0.001);
   s.neighbors.build(s.particles, s.walls, s.domain.lo, s.domain.hi, 0, false);
-  PlaneWallStage<Law> stage;
+  WallStage<Law> stage;
   stage.run(s);
   EXPECT_EQ(s.particles.f[0].norm(), 0.0) << Law::name();
   EXPECT_GT(s.particles.f[1].z(), 0.0) << Law::name();

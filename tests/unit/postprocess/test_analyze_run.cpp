@@ -84,7 +84,7 @@ TEST_F(AnalyzeRun, FramesAndContactsMatchTheSimulation) {
   EXPECT_EQ(z, f.coordination);
   // Settled bed: every particle touches something (a wall or a particle).
   const auto walls = read_walls(walls_file(dir_ / "out", f.index));
-  EXPECT_EQ(walls.planes.size(), 5u);
+  EXPECT_EQ(walls.of<sim::PlaneWall>().size(), 5u);
   const auto wz = wall_contacts(f, walls);
   for (std::size_t i = 0; i < f.size(); ++i) EXPECT_GT(z[i] + wz[i], 0) << "particle " << i;
 }

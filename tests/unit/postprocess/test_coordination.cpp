@@ -101,21 +101,20 @@ TEST(Coordination, WallContactsCount) {
   // Three spheres on a floor at z = 0, one of them also against a wall at x = 0.
   const Frame f = spheres({Vec3(0.4999, 2, 0.4999), Vec3(3, 2, 0.4999), Vec3(3, 2, 0.6)}, 0.5);
   WallSet w;
-  w.planes.push_back({Vec3(0, 0, 0), Vec3(0, 0, 1)});
-  w.planes.push_back({Vec3(0, 0, 0), Vec3(-1, 0, 0)});
+  sim::PlaneWall floor, side;
+  side.normal = Vec3(1, 0, 0);
+  w.add(floor);
+  w.add(side);
   const auto wz = wall_contacts(f, w);
   EXPECT_EQ(wz, (std::vector<int>{2, 1, 0}));
-  CylinderWall cy;
-  cy.base = Vec3(0, 2, 0);
-  cy.axis = Vec3(0, 0, 1);
-  cy.radius = 3.4999;
-  cy.length = 1;
+  sim::CylinderWall cy;
+  cy.surface = {Vec3(0, 2, 0), Vec3(0, 0, 1), 3.4999, 0, 1, true};
   w = {};
-  w.cylinders.push_back(cy);
+  w.add(cy);
   // Spheres 1 and 2 sit 0.4999 inside the cylinder's surface (t = 0.5, 0.6 within
   // its length); sphere 0 is 3 away from it.
   EXPECT_EQ(wall_contacts(f, w), (std::vector<int>{0, 1, 1}));
-  w.cylinders[0].length = 0.55;  // sphere 2's centre now beyond the cylinder's end
+  w.of<sim::CylinderWall>()[0].surface.t_max = 0.55;  // sphere 2's centre now beyond the cylinder's end
   EXPECT_EQ(wall_contacts(f, w), (std::vector<int>{0, 1, 0}));
 }
 

@@ -43,8 +43,7 @@ walls:
                                         "neighbor: neighbor.verlet_list(skin trigger)",
                                         "force: force.clear+torque+gravity",
                                         "force: force.pair_contacts<hertz+tangential:mindlin+rolling:none+cohesion:none>",
-                                        "force: force.plane_walls<hertz+tangential:mindlin+rolling:none+cohesion:none>",
-                                        "force: force.cylinder_walls<hertz+tangential:mindlin+rolling:none+cohesion:none>",
+                                        "force: force.walls<hertz+tangential:mindlin+rolling:none+cohesion:none>",
                                         "kick: verlet.kick+rotation"};
   EXPECT_EQ(s.pipeline.stage_names(), stages);
   EXPECT_EQ(s.scene.neighbors.history_size(), 3);

@@ -168,14 +168,14 @@ time: {dt_rayleigh: 0.2, end: 0.001}
 walls:
 )";
   auto ok = from_yaml(head + "  - {type: plane, point: [0, 0, 0], normal: [0, 0, 2], hole_radius: 0.001, radius: 0.008, material: m}\n");
-  ASSERT_EQ(ok.scene.walls.planes.size(), 1u);
-  const auto& w = ok.scene.walls.planes[0];
+  ASSERT_EQ(ok.scene.walls.of<sim::PlaneWall>().size(), 1u);
+  const auto& w = ok.scene.walls.of<sim::PlaneWall>()[0];
   EXPECT_TRUE(w.finite());
   EXPECT_EQ(w.hole_radius, 0.001);
   EXPECT_EQ(w.radius, 0.008);
   EXPECT_NEAR(w.normal.z(), 1.0, 1e-15);
   EXPECT_FALSE(from_yaml(head + "  - {type: plane, point: [0, 0, 0], normal: [0, 0, 1], material: m}\n")
-                   .scene.walls.planes[0]
+                   .scene.walls.of<sim::PlaneWall>()[0]
                    .finite());
   const auto e1 = case_errors(head + "  - {type: plane, point: [0, 0, 0], normal: [0, 0, 1], hole_radius: 0.003, radius: 0.002, material: m}\n");
   EXPECT_NE(e1.find("test.yaml:8:"), std::string::npos) << e1;
@@ -188,11 +188,11 @@ walls:
                     "  - {type: plane, point: [0, 0, -0.005], normal: [0, 0, 1], material: m}\n";
   ell.replace(ell.find("radius: 0.0005,"), 15, "radius: 0.0005, shape: {type: ellipsoid, aspect_ratio: 1.5},");
   auto e = from_yaml(ell);
-  ASSERT_EQ(e.scene.walls.planes.size(), 2u);
-  EXPECT_EQ(e.scene.walls.planes[0].history_slots, 2);
-  EXPECT_EQ(e.scene.walls.planes[1].history_slot, 2);
-  EXPECT_EQ(e.scene.walls.planes[1].history_slots, 1);
-  EXPECT_EQ(ok.scene.walls.planes[0].history_slots, 1);
+  ASSERT_EQ(e.scene.walls.of<sim::PlaneWall>().size(), 2u);
+  EXPECT_EQ(e.scene.walls.of<sim::PlaneWall>()[0].history_slots, 2);
+  EXPECT_EQ(e.scene.walls.of<sim::PlaneWall>()[1].history_slot, 2);
+  EXPECT_EQ(e.scene.walls.of<sim::PlaneWall>()[1].history_slots, 1);
+  EXPECT_EQ(ok.scene.walls.of<sim::PlaneWall>()[0].history_slots, 1);
 }
 
 // One prolate spheroid, semi-axes (2, 0.5, 0.5) mm, dropped from rest onto a
@@ -386,14 +386,17 @@ TEST(FinitePlaneWall, WallsFileReadsBackAndMassOutputFollowsTheDischarge) {
   EXPECT_EQ(static_cast<std::int64_t>(now.grains) + sum.lost_particles, 200);
 
   const auto walls = postprocess::read_walls(dir / "frames/walls_000000.vtp");
-  ASSERT_EQ(walls.annuli.size(), 1u);
-  ASSERT_EQ(walls.cylinders.size(), 1u);
-  EXPECT_TRUE(walls.planes.empty());
-  const auto& a = walls.annuli[0];
-  EXPECT_NEAR(a.r_in, 0.0025, 1e-9);
-  EXPECT_NEAR(std::abs(a.normal.z()), 1, 1e-12);
-  EXPECT_NEAR(a.centre.norm(), 0, 1e-9);
-  EXPECT_GT(a.r_out, 0.006);
+  // Rebuilt from the records of the frame: the finite plane and the cylinder as the run had them.
+  ASSERT_EQ(walls.of<sim::CylinderWall>().size(), 1u);
+  ASSERT_EQ(walls.of<sim::PlaneWall>().size(), 1u);
+  const auto& a = walls.of<sim::PlaneWall>()[0];
+  const auto& run = s.scene.walls.of<sim::PlaneWall>()[0];
+  EXPECT_TRUE(a.finite());
+  EXPECT_EQ(a.hole_radius, 0.0025);
+  EXPECT_EQ(a.normal, run.normal);
+  EXPECT_EQ(a.radius, run.radius);
+  EXPECT_NEAR(a.point.norm(), 0, 1e-9);
+  EXPECT_EQ(walls.of<sim::CylinderWall>()[0].surface.radius, s.scene.walls.of<sim::CylinderWall>()[0].surface.radius);
   // Particle-wall contacts as the analysis counts them: one resting beside
   // the hole touches, one over the middle of the hole does not.
   postprocess::Frame f;

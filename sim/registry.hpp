@@ -1,5 +1,6 @@
 #pragma once
-// Registries of compile-time types (laws by slot, sim/laws/*_laws.hpp): a
+// Registries of compile-time types (laws by slot, sim/laws/*_laws.hpp; wall
+// kinds, sim/walls/wall_kinds.hpp): a
 // type list that dispatch, `grains docs`, the case parser and the property
 // tests all walk, so a law is named and described in one place and costs no
 // virtual call per contact.
