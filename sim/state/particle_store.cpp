@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <stdexcept>
+#include <type_traits>
 
 namespace grains::sim {
 
@@ -12,75 +13,33 @@ void ParticleStore::configure(FieldSet fields, int wall_history_size) {
 }
 
 std::vector<std::string> ParticleStore::field_names() const {
-  std::vector<std::string> n{"id", "position", "velocity", "force", "radius", "mass", "material", "shape"};
-  if (fields_.has(Field::AngularVelocity)) n.emplace_back("angular_velocity");
-  if (fields_.has(Field::Torque)) n.emplace_back("torque");
-  if (fields_.has(Field::Inertia)) n.emplace_back("inertia");
-  if (fields_.has(Field::Orientation)) n.emplace_back("orientation");
-  if (fields_.has(Field::WallHistory))
-    n.emplace_back("wall_history[" + std::to_string(wall_history_size_) + "]");
-  if (fields_.has(Field::AngularMomentum)) n.emplace_back("angular_momentum");
-  if (fields_.has(Field::SemiAxes)) n.emplace_back("semi_axes");
-  if (fields_.has(Field::ShapeForm)) n.emplace_back("shape_form");
-  if (fields_.has(Field::Body)) {
-    n.emplace_back("body");
-    n.emplace_back("body_offset");
-  }
+  std::vector<std::string> n;
+  declare_fields([&](const FieldInfo& f, auto, auto) {
+    n.emplace_back(f.width > 1 ? std::string(f.name) + "[" + std::to_string(f.width) + "]" : std::string(f.name));
+  });
   return n;
 }
 
 std::size_t ParticleStore::add(std::int64_t gid, const Vec3& xi, const Vec3& vi, double r, double m,
                                int mat, int shp) {
   if (n_ghost() != 0) throw std::logic_error("ParticleStore::add with ghosts present");
-  id.push_back(gid);
-  x.push_back(xi);
-  v.push_back(vi);
-  f.push_back(Vec3::Zero());
-  radius.push_back(r);
-  mass.push_back(m);
-  inv_mass.push_back(1.0 / m);
-  material.push_back(mat);
-  shape.push_back(shp);
-  if (fields_.has(Field::AngularVelocity)) omega.push_back(Vec3::Zero());
-  if (fields_.has(Field::Torque)) torque.push_back(Vec3::Zero());
-  if (fields_.has(Field::Inertia)) {
-    const double i = 0.4 * m * r * r;  // solid sphere; shapes overwrite
-    inertia.push_back(Vec3(i, i, i));
-  }
-  if (fields_.has(Field::Orientation)) orientation.push_back(Quat::Identity());
-  wall_history.resize(wall_history.size() + wall_history_size_, 0.0);
-  if (fields_.has(Field::AngularMomentum)) angular_momentum.push_back(Vec3::Zero());
-  if (fields_.has(Field::SemiAxes)) semi_axes.push_back(Vec3(r, r, r));
-  if (fields_.has(Field::ShapeForm)) form.push_back({r * r, 0, 0, r * r, 0, r * r});
-  if (fields_.has(Field::Body)) {
-    body.push_back(-1);
-    body_offset.push_back(Vec3::Zero());
-  }
+  const NewParticle q{gid, xi, vi, r, m, mat, shp};
+  declare_fields([&](const FieldInfo& f, auto member, auto fresh) {
+    auto& vec = this->*member;
+    for (int c = 0; c < f.width; ++c) vec.push_back(fresh(q));
+  });
   return n_owned_++;
 }
 
 void ParticleStore::add_ghost(const ParticleStore& from, std::size_t s, const Vec3& shift) {
-  id.push_back(from.id[s]);
-  x.push_back(from.x[s] + shift);
-  v.push_back(from.v[s]);
-  f.push_back(Vec3::Zero());
-  radius.push_back(from.radius[s]);
-  mass.push_back(from.mass[s]);
-  inv_mass.push_back(from.inv_mass[s]);
-  material.push_back(from.material[s]);
-  shape.push_back(from.shape[s]);
-  if (fields_.has(Field::AngularVelocity)) omega.push_back(from.omega[s]);
-  if (fields_.has(Field::Torque)) torque.push_back(Vec3::Zero());
-  if (fields_.has(Field::Inertia)) inertia.push_back(from.inertia[s]);
-  if (fields_.has(Field::Orientation)) orientation.push_back(from.orientation[s]);
-  wall_history.resize(wall_history.size() + wall_history_size_, 0.0);
-  if (fields_.has(Field::AngularMomentum)) angular_momentum.push_back(from.angular_momentum[s]);
-  if (fields_.has(Field::SemiAxes)) semi_axes.push_back(from.semi_axes[s]);
-  if (fields_.has(Field::ShapeForm)) form.push_back(from.form[s]);
-  if (fields_.has(Field::Body)) {
-    body.push_back(from.body[s]);
-    body_offset.push_back(from.body_offset[s]);
-  }
+  const NewParticle none{0, Vec3::Zero(), Vec3::Zero(), 0, 1, 0, 0};
+  declare_fields([&](const FieldInfo& f, auto member, auto fresh) {
+    auto& vec = this->*member;
+    const auto& src = from.*member;
+    for (int c = 0; c < f.width; ++c)
+      vec.push_back(f.ghost_zero ? fresh(none) : src[s * static_cast<std::size_t>(f.width) + c]);
+  });
+  x.back() += shift;
 }
 
 void ParticleStore::clear_ghosts() {
@@ -148,10 +107,10 @@ void ParticleStore::unpack_ghost(const char* rec, const Vec3& shift) {
 }
 
 std::size_t ParticleStore::kinematic_bytes() const {
-  std::size_t b = 2 * sizeof(Vec3);
-  if (fields_.has(Field::AngularVelocity)) b += sizeof(Vec3);
-  if (fields_.has(Field::Orientation)) b += sizeof(Quat);
-  if (fields_.has(Field::ShapeForm)) b += sizeof(std::array<double, 6>);
+  std::size_t b = 0;
+  declare_fields([&](const FieldInfo& f, auto member, auto) {
+    if (f.kinematic) b += sizeof((this->*member)[0]) * static_cast<std::size_t>(f.width);
+  });
   return b;
 }
 
@@ -169,20 +128,26 @@ const char* get(const char* rec, T& v) {
 }  // namespace
 
 void ParticleStore::pack_kinematics(std::size_t i, const Vec3& shift, std::vector<char>& buf) const {
-  put(buf, Vec3(x[i] + shift));
-  put(buf, v[i]);
-  if (fields_.has(Field::AngularVelocity)) put(buf, omega[i]);
-  if (fields_.has(Field::Orientation)) put(buf, orientation[i]);
-  if (fields_.has(Field::ShapeForm)) put(buf, form[i]);
+  declare_fields([&](const FieldInfo& f, auto member, auto) {
+    if (!f.kinematic) return;
+    const auto& vec = this->*member;
+    if constexpr (std::is_same_v<std::decay_t<decltype(vec)>, std::vector<Vec3>>) {
+      if (member == &ParticleStore::x) {  // the position of the image
+        put(buf, Vec3(x[i] + shift));
+        return;
+      }
+    }
+    for (int c = 0; c < f.width; ++c) put(buf, vec[i * static_cast<std::size_t>(f.width) + c]);
+  });
 }
 
 std::size_t ParticleStore::unpack_kinematics(std::size_t i, const char* rec) {
   const char* r = rec;
-  r = get(r, x[i]);
-  r = get(r, v[i]);
-  if (fields_.has(Field::AngularVelocity)) r = get(r, omega[i]);
-  if (fields_.has(Field::Orientation)) r = get(r, orientation[i]);
-  if (fields_.has(Field::ShapeForm)) r = get(r, form[i]);
+  declare_fields([&](const FieldInfo& f, auto member, auto) {
+    if (!f.kinematic) return;
+    auto& vec = this->*member;
+    for (int c = 0; c < f.width; ++c) r = get(r, vec[i * static_cast<std::size_t>(f.width) + c]);
+  });
   return static_cast<std::size_t>(r - rec);
 }
 

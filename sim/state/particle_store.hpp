@@ -116,32 +116,75 @@ class ParticleStore {
   std::vector<Vec3> body_offset;   // ball centre - body centre of mass, in the body frame
 
   /// Applies fn(name, unit, vector&, width) to every allocated per-particle
-  /// array, core first; width is the number of entries per particle. This is
-  /// the one list of fields: permute, ghosts and checkpoints all go through
-  /// it, so a new field added here is carried everywhere.
+  /// array, core first; width is the number of entries per particle (the
+  /// fields of declare_fields, for checkpoints).
   template <class Fn>
   void visit_fields(Fn&& fn) {
-    fn("id", "", id, 1); fn("position", "m", x, 1); fn("velocity", "m/s", v, 1); fn("force", "N", f, 1);
-    fn("radius", "m", radius, 1); fn("mass", "kg", mass, 1); fn("inv_mass", "1/kg", inv_mass, 1);
-    fn("material", "", material, 1); fn("shape", "", shape, 1);
-    if (fields_.has(Field::AngularVelocity)) fn("angular_velocity", "rad/s", omega, 1);
-    if (fields_.has(Field::Torque)) fn("torque", "N m", torque, 1);
-    if (fields_.has(Field::Inertia)) fn("inertia", "kg m^2", inertia, 1);
-    if (fields_.has(Field::Orientation)) fn("orientation", "", orientation, 1);
-    if (wall_history_size_ > 0) fn("wall_history", "m (tangential), N m (rolling)", wall_history, wall_history_size_);
-    if (fields_.has(Field::AngularMomentum)) fn("angular_momentum", "kg m^2/s", angular_momentum, 1);
-    if (fields_.has(Field::SemiAxes)) fn("semi_axes", "m", semi_axes, 1);
-    if (fields_.has(Field::ShapeForm)) fn("shape_form", "m^2", form, 1);
+    declare_fields([&](const FieldInfo& f, auto member, auto) { fn(f.name, f.unit, this->*member, f.width); });
+  }
+
+  /// What the one list of fields says of each field.
+  struct FieldInfo {
+    const char* name;
+    const char* unit;
+    int width = 1;           // entries per particle
+    bool kinematic = false;  // changes every step: sent in each ghost update (pack_kinematics)
+    bool ghost_zero = false; // a ghost starts from zero (an accumulator, history), not from its owner's value
+  };
+  /// The arguments of add(): what a new particle's fields are made from.
+  struct NewParticle {
+    std::int64_t id;
+    Vec3 x, v;
+    double r, m;
+    int material, shape;
+  };
+
+  /// The one list of per-particle fields: fn(info, member pointer, fresh)
+  /// for every field that exists, core first, where fresh(NewParticle) is a
+  /// new particle's value. field_names, add, add_ghost, permute, the MPI
+  /// records and ghost updates, and checkpoints all go through it, so a new
+  /// field added here is carried everywhere (docs/architecture.md).
+  template <class Fn>
+  void declare_fields(Fn&& fn) const {
+    using P = ParticleStore;
+    using Q = const NewParticle&;
+    auto zero3 = [](Q) { return Vec3(Vec3::Zero()); };
+    fn(FieldInfo{"id", ""}, &P::id, [](Q q) { return q.id; });
+    fn(FieldInfo{"position", "m", 1, true}, &P::x, [](Q q) { return q.x; });
+    fn(FieldInfo{"velocity", "m/s", 1, true}, &P::v, [](Q q) { return q.v; });
+    fn(FieldInfo{"force", "N", 1, false, true}, &P::f, zero3);
+    fn(FieldInfo{"radius", "m"}, &P::radius, [](Q q) { return q.r; });
+    fn(FieldInfo{"mass", "kg"}, &P::mass, [](Q q) { return q.m; });
+    fn(FieldInfo{"inv_mass", "1/kg"}, &P::inv_mass, [](Q q) { return 1.0 / q.m; });
+    fn(FieldInfo{"material", ""}, &P::material, [](Q q) { return std::int32_t(q.material); });
+    fn(FieldInfo{"shape", ""}, &P::shape, [](Q q) { return std::int32_t(q.shape); });
+    if (fields_.has(Field::AngularVelocity)) fn(FieldInfo{"angular_velocity", "rad/s", 1, true}, &P::omega, zero3);
+    if (fields_.has(Field::Torque)) fn(FieldInfo{"torque", "N m", 1, false, true}, &P::torque, zero3);
+    if (fields_.has(Field::Inertia))  // a solid sphere; shapes overwrite
+      fn(FieldInfo{"inertia", "kg m^2"}, &P::inertia, [](Q q) {
+        const double i = 0.4 * q.m * q.r * q.r;
+        return Vec3(i, i, i);
+      });
+    if (fields_.has(Field::Orientation))
+      fn(FieldInfo{"orientation", "", 1, true}, &P::orientation, [](Q) { return Quat(Quat::Identity()); });
+    if (wall_history_size_ > 0)
+      fn(FieldInfo{"wall_history", "m (tangential), N m (rolling)", wall_history_size_, false, true}, &P::wall_history,
+         [](Q) { return 0.0; });
+    if (fields_.has(Field::AngularMomentum)) fn(FieldInfo{"angular_momentum", "kg m^2/s"}, &P::angular_momentum, zero3);
+    if (fields_.has(Field::SemiAxes)) fn(FieldInfo{"semi_axes", "m"}, &P::semi_axes, [](Q q) { return Vec3(q.r, q.r, q.r); });
+    if (fields_.has(Field::ShapeForm))
+      fn(FieldInfo{"shape_form", "m^2", 1, true}, &P::form,
+         [](Q q) { return std::array<double, 6>{q.r * q.r, 0, 0, q.r * q.r, 0, q.r * q.r}; });
     if (fields_.has(Field::Body)) {
-      fn("body", "", body, 1);
-      fn("body_offset", "m", body_offset, 1);
+      fn(FieldInfo{"body", ""}, &P::body, [](Q) { return std::int64_t{-1}; });
+      fn(FieldInfo{"body_offset", "m"}, &P::body_offset, zero3);
     }
   }
 
  private:
   template <class Fn>
   void for_each_field(Fn&& fn) {
-    visit_fields([&fn](const char*, const char*, auto& vec, int w) { fn(vec, w); });
+    declare_fields([&](const FieldInfo& f, auto member, auto) { fn(this->*member, f.width); });
   }
   FieldSet fields_{};
   int wall_history_size_ = 0;

@@ -25,7 +25,7 @@ TEST(Pipeline, FrictionlessWalllessSceneHasOnlyWhatItNeeds) {
       "drift: verlet.kick_drift", "neighbor: neighbor.verlet_list(skin trigger)", "force: force.clear",
       "force: force.pair_contacts<hertz+tangential:none+rolling:none+cohesion:none>", "kick: verlet.kick"};
   EXPECT_EQ(s.pipeline.stage_names(), stages);
-  const std::vector<std::string> fields{"id", "position", "velocity", "force", "radius", "mass", "material", "shape"};
+  const std::vector<std::string> fields{"id", "position", "velocity", "force", "radius", "mass", "inv_mass", "material", "shape"};
   EXPECT_EQ(s.scene.particles.field_names(), fields);
   EXPECT_EQ(s.scene.neighbors.history_size(), 0);
   EXPECT_TRUE(s.scene.particles.omega.empty());
