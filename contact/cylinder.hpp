@@ -10,12 +10,12 @@
 namespace grains::contact {
 
 struct CylinderSurface {
-  Vec3 base;      // a point on the axis
-  Vec3 axis;      // unit axis direction
-  double radius;  // of the surface
-  double t_min;   // extent along the axis, measured from base
-  double t_max;
-  bool inside;    // particles are inside the cylinder
+  Vec3 base{0, 0, 0};      // a point on the axis
+  Vec3 axis{0, 0, 1};      // unit axis direction
+  double radius = 1;       // of the surface
+  double t_min = -1e300;   // extent along the axis, measured from base
+  double t_max = 1e300;
+  bool inside = true;      // particles are held inside (a silo) or kept outside (a post)
 };
 
 /// Distance of the sphere centre from the surface along its outward (towards

@@ -13,6 +13,12 @@
 
 namespace grains::contact {
 
+/// An infinite one-sided plane: particles live on the side `normal` points to.
+struct Plane {
+  Vec3 point{0, 0, 0};
+  Vec3 normal{0, 0, 1};  // unit
+};
+
 /// Signed distance of point x from the plane (point p, unit normal n).
 GRAINS_INLINE double plane_distance(const Vec3& x, const Vec3& p, const Vec3& n) { return n.dot(x - p); }
 

@@ -9,7 +9,7 @@
 // polyhedral volume of the mesh is kept in the metadata for the volume error.
 
 #include "contact/clump/sphere_decomposition.hpp"
-#include "io/mesh/triangle_mesh.hpp"
+#include "contact/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 

@@ -22,7 +22,7 @@
 // within eps = sqrt(3) h / 2 = sqrt(3) L / m^(1/3) of a node.
 
 #include "contact/clump/mesh_distance.hpp"
-#include "io/mesh/triangle_mesh.hpp"
+#include "contact/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 

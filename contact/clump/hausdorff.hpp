@@ -24,7 +24,7 @@
 #include "contact/clump/ball_union.hpp"
 #include "contact/clump/distance_grid.hpp"
 #include "contact/clump/mesh_distance.hpp"
-#include "io/mesh/triangle_mesh.hpp"
+#include "contact/mesh/triangle_mesh.hpp"
 
 namespace grains::clump {
 

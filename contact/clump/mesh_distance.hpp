@@ -8,7 +8,7 @@
 // the closest feature (face, edge or vertex), which is exact for closed,
 // consistently oriented, manifold meshes (Baerentzen & Aanaes, IEEE TVCG 2005).
 
-#include "io/mesh/triangle_mesh.hpp"
+#include "contact/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 

@@ -30,7 +30,7 @@
 // them; it is 0 in most runs).
 
 #include "contact/clump/distance_grid.hpp"
-#include "io/mesh/triangle_mesh.hpp"
+#include "contact/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 

@@ -15,7 +15,7 @@ using Eigen::Vector2d;
 using Eigen::Vector3d;
 
 ContactGeometry ellipsoid_plane_contact(const Vector3d& centre, const SymMat3& q, const Vector3d& semi_axes,
-                                        const PlaneWall& wall, bool* touching) {
+                                        const Plane& wall, bool* touching) {
   const Vector3d& m = wall.normal;
   const Vector3d qm = form_times(q, m);
   const double h2 = m.dot(qm), h = std::sqrt(h2);
@@ -32,7 +32,7 @@ ContactGeometry ellipsoid_plane_contact(const Vector3d& centre, const SymMat3& q
   return g;
 }
 
-ContactGeometry ellipsoid_plane_contact(const Ellipsoid& body, const PlaneWall& wall, bool* touching) {
+ContactGeometry ellipsoid_plane_contact(const Ellipsoid& body, const Plane& wall, bool* touching) {
   return ellipsoid_plane_contact(body.centre, body.form(), body.semi_axes, wall, touching);
 }
 
@@ -40,7 +40,7 @@ namespace {
 
 // The post: closest point of the shadow ellipse (principal frame v0, v1,
 // semi-axes b0 >= b1, centre cp relative to the axis) to the axis.
-ContactGeometry outside_cylinder(const Ellipsoid& body, const CylinderWall& wall, const SymMat3& q,
+ContactGeometry outside_cylinder(const Ellipsoid& body, const CylinderSurface& wall, const SymMat3& q,
                                  const Vector3d& t1, const Vector3d& t2, const Vector2d& v0, const Vector2d& v1,
                                  const double (&cp)[2], const double (&b)[2], double b0sq_minus_b1sq,
                                  bool* touching) {
@@ -85,22 +85,22 @@ ContactGeometry outside_cylinder(const Ellipsoid& body, const CylinderWall& wall
   k(1, 1) += 1.0 / wall.radius;  // convex post
   g.radius = hertz_radius(k);
   if (touching) {
-    const double zc = (contact_on_body - wall.axis_point).dot(dax);
-    *touching = g.overlap > 0.0 && zc >= wall.z_min && zc <= wall.z_max;
+    const double zc = (contact_on_body - wall.base).dot(dax);
+    *touching = g.overlap > 0.0 && zc >= wall.t_min && zc <= wall.t_max;
   }
   return g;
 }
 
 }  // namespace
 
-ContactGeometry ellipsoid_cylinder_contact(const Ellipsoid& body, const CylinderWall& wall,
+ContactGeometry ellipsoid_cylinder_contact(const Ellipsoid& body, const CylinderSurface& wall,
                                            bool* touching) {
   const SymMat3 q = body.form();
   const Vector3d& d = wall.axis;
   Vector3d t1, t2;
   tangent_basis(d, t1, t2);
   // Shadow ellipse in the plane normal to the axis.
-  const Vector3d rel = body.centre - wall.axis_point;
+  const Vector3d rel = body.centre - wall.base;
   const Vector2d c(rel.dot(t1), rel.dot(t2));
   const double a00 = t1.dot(form_times(q, t1)), a01 = t1.dot(form_times(q, t2)), a11 = t2.dot(form_times(q, t2));
   // Principal frame: b0^2 >= b1^2, eigenvector v0 at angle theta.
@@ -148,8 +148,8 @@ ContactGeometry ellipsoid_cylinder_contact(const Ellipsoid& body, const Cylinder
   // floor the relative curvature at 1e-3 of the body's own.
   g.radius = hertz_radius(k, 1e-3 * std::min(k_body(0, 0), k_body(1, 1)));
   if (touching) {
-    const double zc = (contact_on_body - wall.axis_point).dot(d);
-    *touching = g.overlap > 0.0 && zc >= wall.z_min && zc <= wall.z_max;
+    const double zc = (contact_on_body - wall.base).dot(d);
+    *touching = g.overlap > 0.0 && zc >= wall.t_min && zc <= wall.t_max;
   }
   return g;
 }
@@ -302,7 +302,7 @@ AnnulusContacts ellipsoid_annulus_contacts(const Ellipsoid& body, const Annulus&
   const double hn = n.dot(rel);
   const Vector3d m = hn >= 0.0 ? Vector3d(n) : Vector3d(-n);
   bool reaches = false;
-  const ContactGeometry face = ellipsoid_plane_contact(body, PlaneWall{wall.centre, m}, &reaches);
+  const ContactGeometry face = ellipsoid_plane_contact(body, Plane{wall.centre, m}, &reaches);
   if (!reaches) return out;  // the body does not reach the plane of the sheet
   // Foot on the plane of the deepest point.
   const Vector3d q0 = face.point + 0.5 * face.overlap * m;

@@ -63,34 +63,22 @@
 
 #include "contact/contact_geometry.hpp"
 #include "contact/ellipsoid/ellipsoid.hpp"
+#include "contact/cylinder.hpp"
 #include "contact/plane.hpp"
 
 namespace grains::contact {
 
-struct PlaneWall {
-  Eigen::Vector3d point{0, 0, 0};
-  Eigen::Vector3d normal{0, 0, 1};  // unit, pointing to the particles' side
-};
-
-struct CylinderWall {
-  Eigen::Vector3d axis_point{0, 0, 0};
-  Eigen::Vector3d axis{0, 0, 1};  // unit
-  double radius = 1.0;
-  double z_min = -1e300, z_max = 1e300;  // extent along the axis from axis_point
-  bool inside = true;  // particles held inside (a silo) or kept outside (a post)
-};
-
 // Body i = ellipsoid, body j = wall; the normal points from the wall into the
 // ellipsoid. `touching` (optional) is set to overlap > 0 (and, for the
 // cylinder, the contact point within the wall's extent).
-ContactGeometry ellipsoid_plane_contact(const Ellipsoid& body, const PlaneWall& wall,
+ContactGeometry ellipsoid_plane_contact(const Ellipsoid& body, const Plane& wall,
                                         bool* touching = nullptr);
 // The same with the body's form Q already at hand (a DEM scene keeps it per
 // particle): R* in closed form, a0 a1 a2 / h^2 with h = sqrt(m^T Q m).
 ContactGeometry ellipsoid_plane_contact(const Eigen::Vector3d& centre, const SymMat3& form,
-                                        const Eigen::Vector3d& semi_axes, const PlaneWall& wall,
+                                        const Eigen::Vector3d& semi_axes, const Plane& wall,
                                         bool* touching = nullptr);
-ContactGeometry ellipsoid_cylinder_contact(const Ellipsoid& body, const CylinderWall& wall,
+ContactGeometry ellipsoid_cylinder_contact(const Ellipsoid& body, const CylinderSurface& wall,
                                            bool* touching = nullptr);
 
 struct AnnulusContacts {

@@ -1,6 +1,6 @@
 #pragma once
 // Checks YAML nodes against the key declarations of the effects
-// (sim/scene/effect_doc.hpp) and collects every problem with its location,
+// (sim/keys/effect_doc.hpp) and collects every problem with its location,
 // so a user sees all mistakes of a case file at once:
 //   case.yaml:12:5: materials[0]: unknown key 'frction'; did you mean 'friction'? valid keys: ...
 #include <array>
@@ -9,7 +9,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "sim/scene/effect_doc.hpp"
+#include "sim/keys/effect_doc.hpp"
 #include "sim/state/particle_store.hpp"
 
 namespace grains::io {

@@ -1,7 +1,7 @@
 // Case-file keys of the checkpoint section (see docs/checkpoint.md).
 #include <limits>
 
-#include "sim/scene/effect_doc.hpp"
+#include "sim/keys/effect_doc.hpp"
 
 namespace grains::io {
 

@@ -4,8 +4,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "contact/clump/clump_command.hpp"
-#include "contact/ellipsoid/pw85_batch.hpp"
+#include "io/cli/clump_command.hpp"
+#include "io/cli/pw85_command.hpp"
 #include "io/cli/analyze_command.hpp"
 
 namespace grains::io {
@@ -35,15 +35,15 @@ int run_tool_command(const std::string& cmd, const std::vector<std::string>& arg
       std::cerr << "usage: grains pw85 [FILE]   (CSV with header q1_0..q1_5,q2_0..q2_5,r_0,r_1,r_2; stdin without FILE)\n";
       return 2;
     }
-    if (args.empty() || args[0] == "-") return contact::run_pw85_batch(std::cin, std::cout, std::cerr);
+    if (args.empty() || args[0] == "-") return run_pw85_batch(std::cin, std::cout, std::cerr);
     std::ifstream in(args[0]);
     if (!in) {
       std::cerr << "grains pw85: cannot open '" << args[0] << "'\n";
       return 2;
     }
-    return contact::run_pw85_batch(in, std::cout, std::cerr);
+    return run_pw85_batch(in, std::cout, std::cerr);
   }
-  if (cmd == "clump") return grains::clump::run_clump_command(args, std::cout, std::cerr);
+  if (cmd == "clump") return run_clump_command(args, std::cout, std::cerr);
   if (cmd == "analyze") return run_analyze_command(args, std::cout, std::cerr);
   if (cmd == "render") return run_render_command(args, std::cout, std::cerr);
   return -1;

@@ -2,7 +2,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/scene/effect_doc.hpp"
+#include "sim/keys/effect_doc.hpp"
 
 namespace grains::io {
 

@@ -5,7 +5,7 @@
 // All failures throw MeshError; nothing aborts.
 
 #include "io/mesh/mesh_validation.hpp"
-#include "io/mesh/triangle_mesh.hpp"
+#include "contact/mesh/triangle_mesh.hpp"
 
 #include <string>
 

@@ -3,7 +3,7 @@
 // tokenizer for the text formats, and vertex welding for STL.
 
 #include "io/mesh/mesh_error.hpp"
-#include "io/mesh/triangle_mesh.hpp"
+#include "contact/mesh/triangle_mesh.hpp"
 
 #include <array>
 #include <map>

@@ -21,7 +21,7 @@
 // face inward) are not supported and would be "repaired" outward.
 // Self-intersections are not detected.
 
-#include "io/mesh/triangle_mesh.hpp"
+#include "contact/mesh/triangle_mesh.hpp"
 
 namespace grains::mesh {
 

@@ -43,6 +43,8 @@ class MassOutput final : public sim::Stage {
   sim::Phase phase() const override { return sim::Phase::Output; }
   void run(sim::Scene& s) override;
   void finish(sim::Scene& s) override;
+  void start(sim::Scene& s) override { write_row(s); }
+  void restart(sim::Scene& s, const sim::RestartPoint&) override { resume(s); }
   /// Writes the row of the current state (the run writes the initial one).
   void write_row(const sim::Scene& s);
   /// After a restart: keeps the file's rows before the restored step, writes

@@ -35,6 +35,8 @@ class SolidFractionOutput final : public sim::Stage {
   sim::Phase phase() const override { return sim::Phase::Output; }
   void run(sim::Scene& s) override;
   void finish(sim::Scene& s) override;
+  /// The field of the initial state (a restart continues the series as it is).
+  void start(sim::Scene& s) override { write_frame(s); }
   /// Computes the field of the scene now (values at the nodes, x fastest),
   /// with the grid it used (origin, spacing, dims).
   std::vector<double> field(const sim::Scene& s, std::array<double, 3>& origin, std::array<int, 3>& dims) const;

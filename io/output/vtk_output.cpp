@@ -23,7 +23,7 @@
 #include "sim/parallel/comm.hpp"
 
 #include "contact/sphere.hpp"
-#include "sim/laws/ellipsoid_pair_stage.hpp"
+#include "sim/neighbor/pair_geometry.hpp"
 
 namespace grains::io {
 

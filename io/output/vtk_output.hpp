@@ -28,6 +28,9 @@ class VtkOutput final : public sim::Stage {
   sim::Phase phase() const override { return sim::Phase::Output; }
   void run(sim::Scene& s) override;
   void finish(sim::Scene& s) override;
+  /// The frame of the initial state; after a restart, the series so far.
+  void start(sim::Scene& s) override { write_frame(s); }
+  void restart(sim::Scene& s, const sim::RestartPoint& r) override { resume(s, r.frame_times, r.frame_steps); }
   /// Writes a frame now (used for the initial state).
   void write_frame(const sim::Scene& s);
   std::size_t frames() const { return times_.size(); }

@@ -41,6 +41,7 @@ class CheckpointStage final : public sim::Stage {
   void set_sort(bool sort) { sort_ = sort; }
   /// Tells the stage which checkpoint the run continues from.
   void restarted_from(const std::filesystem::path& file, std::int64_t step);
+  void restart(sim::Scene& s, const sim::RestartPoint& r) override { restarted_from(r.checkpoint, s.clock.step); }
 
   const std::filesystem::path& dir() const { return dir_; }
   const std::filesystem::path& last() const { return last_; }

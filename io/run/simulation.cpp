@@ -77,13 +77,6 @@ class SignalGuard {
   struct sigaction old_int_ {}, old_term_ {};
 };
 
-template <class T>
-T* find_stage(Simulation& s) {
-  for (const auto& st : s.pipeline.stages())
-    if (auto* p = dynamic_cast<T*>(st.get())) return p;
-  return nullptr;
-}
-
 std::string effective_case(const Case& c) {
   YAML::Emitter e;
   e << c.root;
@@ -140,7 +133,7 @@ void probe_output_dir(const std::filesystem::path& dir) {
 
 }  // namespace
 
-void add_output_stages(Simulation& s, const RunOptions& opt) {
+OutputStages add_output_stages(Simulation& s, const RunOptions& opt) {
   const auto& o = s.c.output;
   // Growing radii push grains apart at up to the growth rate times the domain size.
   double growth_rate = s.c.scene.growth.enabled ? s.c.scene.growth.rate : 0.0;
@@ -176,7 +169,9 @@ void add_output_stages(Simulation& s, const RunOptions& opt) {
                                               std::move(info));
   ck->attach(vtk, blow_up);
   ck->set_sort(s.c.scene.sort_particles);
+  CheckpointStage* checkpoints = ck.get();
   s.pipeline.add(std::move(ck));
+  return {vtk, checkpoints};
 }
 
 RunSummary run(Simulation& s, const RunOptions& opt) {
@@ -191,12 +186,12 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
     }
     if (comm.agree_error(err)) throw OutputFailure(err);
   }
-  add_output_stages(s, opt);
+  const OutputStages outputs = add_output_stages(s, opt);
   const bool talk = !opt.quiet && comm.root();
   for (const auto& w : s.c.scene.warnings)
     if (talk) *opt.log << w << "\n";
-  auto* vtk = find_stage<VtkOutput>(s);
-  auto* ck = find_stage<CheckpointStage>(s);
+  VtkOutput* vtk = outputs.vtk;
+  CheckpointStage* ck = outputs.checkpoints;
   RunSummary r;
   const auto t0 = std::chrono::steady_clock::now();
   if (!opt.restart.empty()) {
@@ -213,18 +208,14 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
     for (const auto& name : comm.root() ? remove_checkpoints_after(ck->dir(), s.scene.clock.step)
                                         : std::vector<std::string>{})
       if (talk) *opt.log << "removed " << name << " (after the restart point)\n";
-    ck->restarted_from(opt.restart, s.scene.clock.step);
-    if (vtk) vtk->resume(s.scene, x.frame_times, x.frame_steps);
-    if (auto* m = find_stage<MassOutput>(s)) m->resume(s.scene);
+    s.pipeline.restart(s.scene, sim::RestartPoint{opt.restart.string(), x.frame_times, x.frame_steps});
     r.restarted_from = opt.restart.string();
     if (talk)
       *opt.log << "restarting from " << opt.restart.string() << " at step " << s.scene.clock.step << " (t = "
                << s.scene.clock.time << " s)\n";
   } else {
     s.pipeline.initialize(s.scene);
-    if (vtk) vtk->write_frame(s.scene);
-    if (auto* sf = find_stage<SolidFractionOutput>(s)) sf->write_frame(s.scene);
-    if (auto* m = find_stage<MassOutput>(s)) m->write_row(s.scene);
+    s.pipeline.start(s.scene);
   }
   r.particles_start = s.scene.particles.n_owned();
   double particle_steps = 0, pair_steps = 0;  // summed over steps: owned particles, list entries

@@ -60,8 +60,17 @@ struct OutputFailure : std::runtime_error {
 /// run early with a checkpoint and summary.signal set.
 RunSummary run(Simulation& sim, const RunOptions& opt);
 
+class VtkOutput;
+class CheckpointStage;
+
+/// The output stages the run itself talks to.
+struct OutputStages {
+  VtkOutput* vtk = nullptr;  // null without VTK output
+  CheckpointStage* checkpoints = nullptr;
+};
+
 /// Adds output stages (blow-up check, VTK, progress, checkpoints) as `run` does.
-void add_output_stages(Simulation& sim, const RunOptions& opt);
+OutputStages add_output_stages(Simulation& sim, const RunOptions& opt);
 
 /// Text for `grains check`: the stages in order and the per-particle fields.
 std::string describe(const Simulation& sim);

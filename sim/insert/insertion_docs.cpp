@@ -1,7 +1,7 @@
 // Case-file keys of the insertion effect (insert[]), declared beside its code.
 #include <limits>
 
-#include "sim/scene/effect_doc.hpp"
+#include "sim/keys/effect_doc.hpp"
 
 namespace grains::sim {
 

@@ -7,7 +7,7 @@
 
 #include "sim/laws/contact_law.hpp"
 #include "sim/laws/normal_laws.hpp"
-#include "sim/scene/effect_doc.hpp"
+#include "sim/keys/effect_doc.hpp"
 
 namespace grains::sim {
 

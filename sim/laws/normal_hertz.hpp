@@ -16,7 +16,7 @@
 #include "sim/laws/pair_params.hpp"
 #include "sim/laws/restitution.hpp"
 #include "sim/laws/step_scale.hpp"
-#include "sim/scene/effect_doc.hpp"
+#include "sim/keys/effect_doc.hpp"
 
 namespace grains::sim {
 

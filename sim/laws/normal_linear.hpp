@@ -26,7 +26,7 @@
 #include "sim/laws/material.hpp"
 #include "sim/laws/normal_state.hpp"
 #include "sim/laws/step_scale.hpp"
-#include "sim/scene/effect_doc.hpp"
+#include "sim/keys/effect_doc.hpp"
 
 namespace grains::sim {
 

@@ -12,7 +12,7 @@
 // force while unloading). The LIGGGHTS/EDEM formula
 // eta_n = -2 sqrt(5/6) beta sqrt(S_n m*) corresponds to a = -2 sqrt(5/6) sqrt(3/2) beta
 // = -sqrt(5) beta; it achieves the target only without the clamp and only
-// approximately (see tests/physics/test_restitution.cpp).
+// approximately (see tests/physics/contact/test_normal_impact.cpp).
 namespace grains::sim {
 
 /// Achieved restitution of the clamped damped Hertz law for dimensionless damping a >= 0.

@@ -2,7 +2,7 @@
 // lists, gravity) and the registry of all sim effects.
 #include <limits>
 
-#include "sim/scene/effect_doc.hpp"
+#include "sim/keys/effect_doc.hpp"
 
 namespace grains::sim {
 

@@ -73,6 +73,14 @@ void Pipeline::step(Scene& s) {
   for (; k < stages_.size(); ++k) run_timed(k, s);
 }
 
+void Pipeline::start(Scene& s) {
+  for (auto& st : stages_) st->start(s);
+}
+
+void Pipeline::restart(Scene& s, const RestartPoint& r) {
+  for (auto& st : stages_) st->restart(s, r);
+}
+
 void Pipeline::finish(Scene& s) {
   for (auto& st : stages_) st->finish(s);
 }

@@ -3,6 +3,7 @@
 // it; the pipeline calls its run() once per step in its phase's order.
 #include <memory>
 #include <string>
+#include <cstdint>
 #include <vector>
 
 #include "sim/scene/scene.hpp"
@@ -10,6 +11,14 @@
 namespace grains::sim {
 
 class Pipeline;
+
+/// What a restart from a checkpoint tells the output stages about the run
+/// so far (io/checkpoint).
+struct RestartPoint {
+  std::string checkpoint;                 // the file the run continues from
+  std::vector<double> frame_times;        // frames written before it
+  std::vector<std::int64_t> frame_steps;
+};
 
 enum class Phase {
   Drift,     // first half kick + drift, wall motion
@@ -29,6 +38,12 @@ class Stage {
   virtual void run(Scene& s) = 0;
   /// Called once after the last step (writers flush, summaries).
   virtual void finish(Scene&) {}
+  /// Before the first step of a fresh run, after the forces at t0 (an output
+  /// writes its record of t0)...
+  virtual void start(Scene&) {}
+  /// ...or instead, when the run continues from a checkpoint (an output
+  /// takes up its series where the checkpoint left it).
+  virtual void restart(Scene&, const RestartPoint&) {}
   /// A driver is an integrator that evaluates the neighbour and force phases
   /// itself, as often as it needs (an adaptive Runge-Kutta method evaluates
   /// the forces at its trial states). It sits in the drift phase; the
@@ -53,6 +68,9 @@ class Pipeline {
   /// Runs the stages of one phase (timed), e.g. the force phase at a driver's trial state.
   void run_phase(Scene& s, Phase p);
   void finish(Scene& s);
+  /// Every stage's start() (a fresh run) or restart() (a continued one), in order.
+  void start(Scene& s);
+  void restart(Scene& s, const RestartPoint& r);
   std::vector<std::string> stage_names() const;
   const std::vector<std::unique_ptr<Stage>>& stages() const { return stages_; }
   /// Wall-clock seconds spent in each stage so far (same order as stages()).

@@ -10,7 +10,7 @@
 
 #include "contact/cylinder.hpp"
 #include "contact/ellipsoid/ellipsoid_walls.hpp"
-#include "sim/scene/effect_doc.hpp"
+#include "sim/keys/effect_doc.hpp"
 #include "sim/state/particle_store.hpp"
 #include "sim/walls/wall_kind.hpp"
 
@@ -68,7 +68,7 @@ struct CylinderWall : WallCommon {
     if constexpr (Shapes) {
       if (p.shape[i] == kEllipsoid) {
         bool touching;
-        c.g[0] = contact::ellipsoid_cylinder_contact({p.x[i], p.semi_axes[i], p.orientation[i]}, ellipsoid_wall(),
+        c.g[0] = contact::ellipsoid_cylinder_contact({p.x[i], p.semi_axes[i], p.orientation[i]}, surface,
                                                      &touching);
         c.count = touching ? 1 : 0;
         return;
@@ -83,7 +83,7 @@ struct CylinderWall : WallCommon {
   }
   bool touches(const contact::Ellipsoid& e) const {
     bool touching = false;
-    contact::ellipsoid_cylinder_contact(e, ellipsoid_wall(), &touching);
+    contact::ellipsoid_cylinder_contact(e, surface, &touching);
     return touching;
   }
 
@@ -120,12 +120,6 @@ struct CylinderWall : WallCommon {
     if (v.size() != 10) return false;
     w.surface = {Vec3(v[0], v[1], v[2]), Vec3(v[3], v[4], v[5]), v[6], v[7], v[8], v[9] != 0};
     return w.surface.axis.norm() > 0 && w.surface.radius > 0;
-  }
-
- private:
-  contact::CylinderWall ellipsoid_wall() const {
-    const auto& c = surface;
-    return contact::CylinderWall{c.base, c.axis, c.radius, c.t_min, c.t_max, c.inside};
   }
 };
 

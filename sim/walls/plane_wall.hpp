@@ -14,7 +14,7 @@
 
 #include "contact/ellipsoid/ellipsoid_walls.hpp"
 #include "contact/plane.hpp"
-#include "sim/scene/effect_doc.hpp"
+#include "sim/keys/effect_doc.hpp"
 #include "sim/state/particle_store.hpp"
 #include "sim/walls/wall_kind.hpp"
 
@@ -82,7 +82,7 @@ struct PlaneWall : WallCommon {
       if constexpr (Shapes) {
         if (p.shape[i] == kEllipsoid) {
           c.g[0] = contact::ellipsoid_plane_contact(p.x[i], p.form[i], p.semi_axes[i],
-                                                    contact::PlaneWall{point, normal}, &touching);
+                                                    contact::Plane{point, normal}, &touching);
           c.count = touching ? 1 : 0;
           return;
         }
@@ -106,7 +106,7 @@ struct PlaneWall : WallCommon {
   bool touches(const contact::Ellipsoid& e) const {
     if (finite()) return contact::ellipsoid_annulus_contacts(e, annulus()).count > 0;
     bool touching = false;
-    contact::ellipsoid_plane_contact(e, contact::PlaneWall{point, normal}, &touching);
+    contact::ellipsoid_plane_contact(e, contact::Plane{point, normal}, &touching);
     return touching;
   }
 

@@ -1,6 +1,6 @@
 // Case-file keys of the wall kinds, from the registry (wall_kinds.hpp): each
 // kind's own keys between the ones every wall has.
-#include "sim/scene/effect_doc.hpp"
+#include "sim/keys/effect_doc.hpp"
 #include "sim/walls/wall_kinds.hpp"
 
 namespace grains::sim {

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "contact/contact_geometry.hpp"
+#include "sim/keys/key_reader.hpp"
 
 namespace grains::sim {
 
@@ -52,29 +53,6 @@ struct WallContacts {
 struct WallSurface {
   std::vector<Vec3> points;
   std::vector<std::array<int, 4>> quads;
-};
-
-/// How a registered kind reads its own case-file keys; io's case parser
-/// implements it against the kind's doc(), so every error is located and
-/// every range checked. Missing keys give the declared default, else `fallback`.
-class KeyReader {
- public:
-  virtual ~KeyReader() = default;
-  virtual bool has(const std::string& key) const = 0;
-  virtual double number(const std::string& key, double fallback) = 0;
-  virtual Vec3 vec3(const std::string& key, const Vec3& fallback) = 0;
-  virtual bool boolean(const std::string& key, bool fallback) = 0;
-  /// Records an error at the key's location (the map's when absent).
-  virtual void error(const std::string& key, const std::string& message) = 0;
-  /// A unit direction from a vector key: a zero vector is an error.
-  Vec3 direction(const std::string& key, const Vec3& fallback) {
-    Vec3 v = vec3(key, fallback);
-    if (v.norm() == 0) {
-      error(key, key + " must not be the zero vector");
-      v = fallback;
-    }
-    return v.normalized();
-  }
 };
 
 }  // namespace grains::sim

@@ -161,8 +161,8 @@ TEST(EllipsoidDem, SpheroidsPouredAroundAPostStayOutOfIt) {
   s.pipeline.initialize(s.scene);
   const auto& p = s.scene.particles;
   const double b = 0.0005 / std::cbrt(2.0);  // short semi-axis
-  contact::CylinderWall post;
-  post.axis_point = sim::Vec3(0.006, 0.006, 0);
+  contact::CylinderSurface post;
+  post.base = sim::Vec3(0.006, 0.006, 0);
   post.radius = 0.002;
   post.inside = false;
   double worst = 0;
@@ -182,7 +182,7 @@ TEST(EllipsoidDem, SpheroidsPouredAroundAPostStayOutOfIt) {
   EXPECT_LT(worst / b, 0.05);
   // The post holds the grains off its axis: every centre outside it.
   for (std::size_t i = 0; i < p.n_owned(); ++i)
-    EXPECT_GT((p.x[i] - post.axis_point).head<2>().norm(), post.radius + 0.9 * b);
+    EXPECT_GT((p.x[i] - post.base).head<2>().norm(), post.radius + 0.9 * b);
 }
 
 TEST(EllipsoidDem, PipelineHasShapeStagesAndFields) {

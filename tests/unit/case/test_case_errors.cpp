@@ -7,9 +7,12 @@
 
 #include "io/case/case.hpp"
 #include "io/run/simulation.hpp"
+#include "tests/support/case_errors.hpp"
 
 namespace grains::io {
 namespace {
+
+using test::errors_of;
 
 const std::string kGood = R"(domain:
   min: [0, 0, 0]
@@ -34,20 +37,6 @@ std::string replace(std::string s, const std::string& from, const std::string& t
   const auto p = s.find(from);
   EXPECT_NE(p, std::string::npos) << from;
   return s.replace(p, from.size(), to);
-}
-
-// The messages of a case that must fail.
-std::string errors_of(const std::string& yaml, const std::vector<std::string>& sets = {}) {
-  try {
-    auto c = parse_case(yaml, "case.yaml", sets);
-    (void)make_simulation(std::move(c));
-  } catch (const CaseError& e) {
-    return e.what();
-  } catch (const sim::SetupError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "case was accepted:\n" << yaml;
-  return "";
 }
 
 TEST(CaseErrors, GoodCaseIsAccepted) { EXPECT_NO_THROW((void)make_simulation(parse_case(kGood, "case.yaml"))); }

@@ -4,10 +4,13 @@
 
 #include "io/case/case.hpp"
 #include "io/run/simulation.hpp"
+#include "tests/support/case_errors.hpp"
 #include "sim/integrate/arkode.hpp"
 
 namespace grains::io {
 namespace {
+
+using test::errors_of;
 
 std::string with_time(const std::string& time_block, const std::string& extra = "") {
   return R"(domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}
@@ -18,18 +21,6 @@ particles:
   - {material: glass, radius: 0.0005, count: 10, placement: {type: random_fill, region: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}}}
 time:
 )" + time_block + extra;
-}
-
-std::string errors_of(const std::string& yaml, const std::vector<std::string>& sets = {}) {
-  try {
-    (void)make_simulation(parse_case(yaml, "case.yaml", sets));
-  } catch (const CaseError& e) {
-    return e.what();
-  } catch (const sim::SetupError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "case was accepted:\n" << yaml;
-  return "";
 }
 
 TEST(IntegratorKeys, VerletIsTheDefault) {

@@ -5,10 +5,13 @@
 
 #include "io/case/case.hpp"
 #include "io/run/simulation.hpp"
+#include "tests/support/case_errors.hpp"
 #include "sim/laws/normal_linear.hpp"
 
 namespace grains::io {
 namespace {
+
+using test::errors_of;
 
 const std::string kCase = R"(domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}
 materials:
@@ -21,18 +24,6 @@ particles:
     placement: {type: random_fill, region: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}}
 time: {dt: 1.0e-6, end: 1.0e-5}
 )";
-
-std::string errors_of(const std::string& yaml) {
-  try {
-    (void)make_simulation(parse_case(yaml, "case.yaml"));
-  } catch (const CaseError& e) {
-    return e.what();
-  } catch (const sim::SetupError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "case was accepted:\n" << yaml;
-  return "";
-}
 
 using L = sim::LinearNormal;
 

@@ -1,7 +1,7 @@
 // Clump YAML files and the `grains clump` command.
 
 #include "clump_test_data.hpp"
-#include "contact/clump/clump_command.hpp"
+#include "io/cli/clump_command.hpp"
 #include "contact/clump/clump_yaml.hpp"
 
 #include <gtest/gtest.h>
@@ -11,6 +11,7 @@
 #include <sstream>
 
 using namespace grains::clump;
+using grains::io::run_clump_command;
 
 namespace {
 std::string temp(const std::string& name) {

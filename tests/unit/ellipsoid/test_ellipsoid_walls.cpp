@@ -42,7 +42,7 @@ TEST(EllipsoidPlane, SphereAndStandingSpheroid) {
   ball.centre = Vector3d(0.3, -2, 1.2);
   ball.orientation = Quat(Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()));
   bool touching = false;
-  ContactGeometry g = ellipsoid_plane_contact(ball, PlaneWall{}, &touching);
+  ContactGeometry g = ellipsoid_plane_contact(ball, Plane{}, &touching);
   EXPECT_TRUE(touching);
   EXPECT_NEAR(g.overlap, 0.3, 1e-15);
   EXPECT_LT((g.normal - Vector3d(0, 0, 1)).norm(), 1e-15);
@@ -53,14 +53,14 @@ TEST(EllipsoidPlane, SphereAndStandingSpheroid) {
   s.semi_axes = Vector3d(3, 1, 1);
   s.orientation = Quat(Eigen::AngleAxisd(std::numbers::pi / 2, Vector3d(0, 1, 0)));  // x -> -z
   s.centre = Vector3d(0, 0, 2.9);
-  g = ellipsoid_plane_contact(s, PlaneWall{}, &touching);
+  g = ellipsoid_plane_contact(s, Plane{}, &touching);
   EXPECT_TRUE(touching);
   EXPECT_NEAR(g.overlap, 0.1, 1e-14);
   EXPECT_NEAR(g.radius, 1.0 / 3.0, 1e-14);
   // Lying on its flank: radii b and a^2/b, R* = sqrt(b * a^2/b) = a.
   s.orientation = Quat::Identity();
   s.centre = Vector3d(0, 0, 1.05);
-  g = ellipsoid_plane_contact(s, PlaneWall{}, &touching);
+  g = ellipsoid_plane_contact(s, Plane{}, &touching);
   EXPECT_FALSE(touching);
   EXPECT_NEAR(g.overlap, -0.05, 1e-15);
   EXPECT_NEAR(g.radius, 3.0, 1e-14);
@@ -78,7 +78,7 @@ TEST(EllipsoidPlane, ClosedFormHertzRadiusMatchesTheCurvatureTensor) {
       b.semi_axes = Vector3d(1.0, rng.uniform(1.0, ar), rng.uniform(1.0, ar)) * rng.uniform(0.1, 10);
       b.orientation = rng.rotation();
       b.centre = rng.unit_vector() * rng.uniform(0, 2);
-      const PlaneWall wall{Vector3d(0.1, -0.2, 0.3), rng.unit_vector()};
+      const Plane wall{Vector3d(0.1, -0.2, 0.3), rng.unit_vector()};
       bool touching = false, touching_form = false;
       const ContactGeometry g = ellipsoid_plane_contact(b, wall, &touching);
       const ContactGeometry f = ellipsoid_plane_contact(b.centre, b.form(), b.semi_axes, wall, &touching_form);
@@ -103,7 +103,7 @@ TEST(EllipsoidPlane, DeepestPointAgainstSampling) {
     b.semi_axes = Vector3d(rng.uniform(0.2, 3), rng.uniform(0.2, 3), rng.uniform(0.2, 3));
     b.orientation = rng.rotation();
     b.centre = rng.unit_vector() * 2;
-    PlaneWall w;
+    Plane w;
     w.normal = rng.unit_vector();
     w.point = Vector3d(rng.normal(), rng.normal(), rng.normal());
     const ContactGeometry g = ellipsoid_plane_contact(b, w);
@@ -117,7 +117,7 @@ TEST(EllipsoidPlane, DeepestPointAgainstSampling) {
 }
 
 TEST(EllipsoidCylinder, SphereInsideACylinder) {
-  CylinderWall w;
+  CylinderSurface w;
   w.radius = 5;
   Ellipsoid ball;
   ball.semi_axes = Vector3d::Constant(1.0);
@@ -131,7 +131,7 @@ TEST(EllipsoidCylinder, SphereInsideACylinder) {
   // Relative curvatures 1/a - 1/R_c around, 1/a along the axis.
   EXPECT_NEAR(g.radius, 1 / std::sqrt((1 - 0.2) * 1), 1e-14);
   // Outside the wall's axial extent: no contact.
-  w.z_min = 1.0;
+  w.t_min = 1.0;
   ellipsoid_cylinder_contact(ball, w, &touching);
   EXPECT_FALSE(touching);
 }
@@ -139,9 +139,9 @@ TEST(EllipsoidCylinder, SphereInsideACylinder) {
 TEST(EllipsoidCylinder, FarthestPointAgainstSampling) {
   Rng rng(41);
   for (int k = 0; k < 60; ++k) {
-    CylinderWall w;
+    CylinderSurface w;
     w.axis = rng.unit_vector();
-    w.axis_point = Vector3d(rng.normal(), rng.normal(), rng.normal());
+    w.base = Vector3d(rng.normal(), rng.normal(), rng.normal());
     w.radius = 6;
     Ellipsoid b;
     b.semi_axes = Vector3d(rng.uniform(0.2, 3), rng.uniform(0.2, 3), rng.uniform(0.2, 3));
@@ -149,11 +149,11 @@ TEST(EllipsoidCylinder, FarthestPointAgainstSampling) {
     Vector3d off = rng.unit_vector();
     off -= off.dot(w.axis) * w.axis;
     // Half the cases with the centre exactly on the axis (the hard case).
-    b.centre = w.axis_point + (k % 2 ? rng.uniform(0, 3) : 0.0) * off + rng.normal() * w.axis;
+    b.centre = w.base + (k % 2 ? rng.uniform(0, 3) : 0.0) * off + rng.normal() * w.axis;
     const ContactGeometry g = ellipsoid_cylinder_contact(b, w);
     double far = 0;
     for_surface_samples(b, 150, [&](const Vector3d& x) {
-      const Vector3d rel = x - w.axis_point;
+      const Vector3d rel = x - w.base;
       far = std::max(far, (rel - rel.dot(w.axis) * w.axis).norm());
     });
     EXPECT_GE(g.overlap, far - w.radius - 1e-12);
@@ -168,7 +168,7 @@ TEST(EllipsoidCylinder, LyingSpheroidTipTouchesTheWall) {
   // Prolate (a, b, b) with its axis radial: the tip is the farthest point,
   // overlap = offset + a - R_c; principal radii at the tip are b^2/a, and the
   // wall (radius R_c) is concave around the circumference.
-  CylinderWall w;
+  CylinderSurface w;
   w.radius = 4;
   Ellipsoid s;
   s.semi_axes = Vector3d(2, 0.5, 0.5);
@@ -182,7 +182,7 @@ TEST(EllipsoidCylinder, LyingSpheroidTipTouchesTheWall) {
 TEST(EllipsoidPost, SphereOutsideACylinder) {
   // A post of radius 2 and a unit sphere at 2.9 from its axis: overlap 0.1,
   // pushed radially outwards, R* of a sphere on a cylinder 1/sqrt((1+1/2) 1).
-  CylinderWall w;
+  CylinderSurface w;
   w.radius = 2;
   w.inside = false;
   Ellipsoid ball;
@@ -204,7 +204,7 @@ TEST(EllipsoidPost, SphereOutsideACylinder) {
 TEST(EllipsoidPost, LyingSpheroidTipAgainstThePost) {
   // Prolate (a, b, b) pointing at the axis: overlap = R_c + a - offset,
   // principal radii b^2/a at the tip, the post convex around it.
-  CylinderWall w;
+  CylinderSurface w;
   w.radius = 1;
   w.inside = false;
   Ellipsoid s;
@@ -225,9 +225,9 @@ TEST(EllipsoidPost, ClosestPointAgainstSampling) {
   Rng rng(42);
   int pierced = 0;
   for (int k = 0; k < 80; ++k) {
-    CylinderWall w;
+    CylinderSurface w;
     w.axis = rng.unit_vector();
-    w.axis_point = Vector3d(rng.normal(), rng.normal(), rng.normal());
+    w.base = Vector3d(rng.normal(), rng.normal(), rng.normal());
     w.radius = rng.uniform(0.1, 2);
     w.inside = false;
     Ellipsoid b;
@@ -236,7 +236,7 @@ TEST(EllipsoidPost, ClosestPointAgainstSampling) {
     Vector3d off = rng.unit_vector();
     off -= off.dot(w.axis) * w.axis;
     off.normalize();
-    b.centre = w.axis_point + (k % 8 == 0 ? 0.0 : rng.uniform(0, 5)) * off + rng.normal() * w.axis;
+    b.centre = w.base + (k % 8 == 0 ? 0.0 : rng.uniform(0, 5)) * off + rng.normal() * w.axis;
     const ContactGeometry g = ellipsoid_cylinder_contact(b, w);
     ASSERT_TRUE(std::isfinite(g.overlap) && std::isfinite(g.radius) && g.normal.allFinite());
     EXPECT_NEAR(g.normal.dot(w.axis), 0.0, 1e-13);
@@ -244,14 +244,14 @@ TEST(EllipsoidPost, ClosestPointAgainstSampling) {
     EXPECT_GT(g.radius, 0.0);
     double near = INFINITY;
     for_surface_samples(b, 150, [&](const Vector3d& x) {
-      const Vector3d rel = x - w.axis_point;
+      const Vector3d rel = x - w.base;
       near = std::min(near, (rel - rel.dot(w.axis) * w.axis).norm());
     });
     // Is the axis through the body? (Its closest approach to the centre, in
     // the body frame, inside the unit ball.)
     const Mat3 R = b.orientation.toRotationMatrix();
-    const Vector3d rel = b.centre - w.axis_point;
-    const Vector3d foot = w.axis_point + rel.dot(w.axis) * w.axis;
+    const Vector3d rel = b.centre - w.base;
+    const Vector3d foot = w.base + rel.dot(w.axis) * w.axis;
     // Minimise the body-frame norm along the axis line: a 1D quadratic.
     const Vector3d p0 = (R.transpose() * (foot - b.centre)).cwiseQuotient(b.semi_axes);
     const Vector3d dv = (R.transpose() * w.axis).cwiseQuotient(b.semi_axes);
@@ -334,7 +334,7 @@ TEST(EllipsoidAnnulus, OverAFaceItIsThePlaneContactOnEitherSide) {
     EXPECT_TRUE(c.face[0]);
     EXPECT_EQ(c.slot[0], 0);
     bool touching = false;
-    const ContactGeometry p = ellipsoid_plane_contact(b, PlaneWall{a.centre, side * a.normal}, &touching);
+    const ContactGeometry p = ellipsoid_plane_contact(b, Plane{a.centre, side * a.normal}, &touching);
     ASSERT_TRUE(touching);
     EXPECT_EQ(c.g[0].overlap, p.overlap);
     EXPECT_EQ(c.g[0].normal, p.normal);

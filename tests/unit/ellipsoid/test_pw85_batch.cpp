@@ -8,9 +8,11 @@
 #include <vector>
 
 #include "contact/ellipsoid/pw85.hpp"
-#include "contact/ellipsoid/pw85_batch.hpp"
+#include "io/cli/pw85_command.hpp"
 
 namespace grains::contact {
+using io::run_pw85_batch;
+
 namespace {
 
 const std::string kHeader = "q1_0,q1_1,q1_2,q1_3,q1_4,q1_5,q2_0,q2_1,q2_2,q2_3,q2_4,q2_5,r_0,r_1,r_2";

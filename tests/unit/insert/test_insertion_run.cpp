@@ -12,6 +12,7 @@
 #include "io/checkpoint/checkpoint.hpp"
 #include "io/run/simulation.hpp"
 #include "sim/insert/insertion_stage.hpp"
+#include "tests/support/case_errors.hpp"
 #include "tests/unit/checkpoint/checkpoint_scene.hpp"
 
 namespace grains::test {
@@ -180,19 +181,6 @@ TEST(InsertionRun, RestartBeforeAtAndAfterAnInsertionIsBitwise) {
     SCOPED_TRACE("restart from step " + std::to_string(from));
     expect_same_state(full.scene, part.scene);
   }
-}
-
-// The messages of a case that must fail.
-std::string errors_of(const std::string& yaml) {
-  try {
-    (void)io::make_simulation(io::parse_case(yaml, "case.yaml"));
-  } catch (const io::CaseError& e) {
-    return e.what();
-  } catch (const sim::SetupError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "case was accepted:\n" << yaml;
-  return "";
 }
 
 std::string with(std::string s, const std::string& from, const std::string& to) {

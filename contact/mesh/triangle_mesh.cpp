@@ -1,27 +1,8 @@
-#include "io/mesh/triangle_mesh.hpp"
-
-#include "io/mesh/mesh_error.hpp"
+#include "contact/mesh/triangle_mesh.hpp"
 
 #include <limits>
 
 namespace grains::mesh {
-
-const char* to_string(MeshErrorKind kind) {
-  switch (kind) {
-    case MeshErrorKind::cannot_open: return "cannot_open";
-    case MeshErrorKind::unknown_format: return "unknown_format";
-    case MeshErrorKind::empty: return "empty";
-    case MeshErrorKind::parse: return "parse";
-    case MeshErrorKind::truncated: return "truncated";
-    case MeshErrorKind::non_finite: return "non_finite";
-    case MeshErrorKind::degenerate_face: return "degenerate_face";
-    case MeshErrorKind::not_closed: return "not_closed";
-    case MeshErrorKind::non_manifold: return "non_manifold";
-    case MeshErrorKind::non_orientable: return "non_orientable";
-    case MeshErrorKind::bad_orientation: return "bad_orientation";
-  }
-  return "unknown";
-}
 
 Eigen::Vector3d TriangleMesh::bbox_min() const {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());

@@ -1,4 +1,4 @@
-#include "sim/scene/effect_doc.hpp"
+#include "sim/keys/effect_doc.hpp"
 
 #include <cmath>
 #include <sstream>

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-namespace grains::clump {
+namespace grains::io {
 
 int run_clump_command(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 const char* clump_command_usage();
 
-}  // namespace grains::clump
+}  // namespace grains::io

@@ -1,4 +1,4 @@
-#include "contact/clump/clump_command.hpp"
+#include "io/cli/clump_command.hpp"
 
 #include "contact/clump/clump_template.hpp"
 #include "contact/clump/clump_yaml.hpp"
@@ -10,7 +10,8 @@
 #include <cstdio>
 #include <stdexcept>
 
-namespace grains::clump {
+namespace grains::io {
+using namespace grains::clump;  // the decomposition and its files
 
 const char* clump_command_usage() {
   return "usage: grains clump MESH [--grid N] [--mu MU] [-o CLUMP.yaml] [--density RHO]\n"
@@ -133,4 +134,4 @@ int run_clump_command(const std::vector<std::string>& args, std::ostream& out, s
   return 1;
 }
 
-}  // namespace grains::clump
+}  // namespace grains::io

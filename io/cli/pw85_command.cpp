@@ -1,5 +1,5 @@
 // CSV batch driver for the PW85 contact function: see pw85_batch.hpp.
-#include "contact/ellipsoid/pw85_batch.hpp"
+#include "io/cli/pw85_command.hpp"
 
 #include <array>
 #include <cmath>
@@ -12,7 +12,8 @@
 
 #include "contact/ellipsoid/pw85.hpp"
 
-namespace grains::contact {
+namespace grains::io {
+using namespace grains::contact;  // the PW85 solver and its types
 
 namespace {
 
@@ -130,4 +131,4 @@ int run_pw85_batch(std::istream& in, std::ostream& out, std::ostream& err) {
   return failed > 0 ? 1 : 0;
 }
 
-}  // namespace grains::contact
+}  // namespace grains::io

@@ -13,10 +13,10 @@
 // other rows are still processed.
 #include <iosfwd>
 
-namespace grains::contact {
+namespace grains::io {
 
 // Returns 0 when every row was processed, 1 when some row failed, 2 when the
 // header is missing or wrong.
 int run_pw85_batch(std::istream& in, std::ostream& out, std::ostream& err);
 
-}  // namespace grains::contact
+}  // namespace grains::io
