@@ -62,19 +62,18 @@ struct CylinderWall : WallCommon {
     return contact::sphere_cylinder(x, r, s, g);
   }
 
-  template <bool Shapes, class Held>
-  GRAINS_INLINE void contacts(const ParticleStore& p, std::size_t i, WallContacts& c, Held&&) const {
-    c.slot[0] = 0;
+  template <bool Shapes, class Held, class Emit>
+  GRAINS_INLINE void contacts(const ParticleStore& p, std::size_t i, Held&&, Emit&& emit) const {
+    contact::ContactGeometry g;
     if constexpr (Shapes) {
       if (p.shape[i] == kEllipsoid) {
         bool touching;
-        c.g[0] = contact::ellipsoid_cylinder_contact({p.x[i], p.semi_axes[i], p.orientation[i]}, surface,
-                                                     &touching);
-        c.count = touching ? 1 : 0;
+        g = contact::ellipsoid_cylinder_contact({p.x[i], p.semi_axes[i], p.orientation[i]}, surface, &touching);
+        if (touching) emit(g, 0);
         return;
       }
     }
-    c.count = contact::sphere_cylinder(p.x[i], p.radius[i], surface, c.g[0]) ? 1 : 0;
+    if (contact::sphere_cylinder(p.x[i], p.radius[i], surface, g)) emit(g, 0);
   }
 
   bool touches(const Vec3& x, double r) const {

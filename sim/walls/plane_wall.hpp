@@ -74,29 +74,29 @@ struct PlaneWall : WallCommon {
     return contact::plane_distance(x, point, normal) < reach;
   }
 
-  template <bool Shapes, class Held>
-  GRAINS_INLINE void contacts(const ParticleStore& p, std::size_t i, WallContacts& c, Held&& held) const {
-    c.slot[0] = 0;
+  template <bool Shapes, class Held, class Emit>
+  GRAINS_INLINE void contacts(const ParticleStore& p, std::size_t i, Held&& held, Emit&& emit) const {
+    contact::ContactGeometry g;
     if (!finite()) {
-      bool touching;
       if constexpr (Shapes) {
         if (p.shape[i] == kEllipsoid) {
-          c.g[0] = contact::ellipsoid_plane_contact(p.x[i], p.form[i], p.semi_axes[i],
-                                                    contact::Plane{point, normal}, &touching);
-          c.count = touching ? 1 : 0;
+          bool touching;
+          g = contact::ellipsoid_plane_contact(p.x[i], p.form[i], p.semi_axes[i], contact::Plane{point, normal},
+                                               &touching);
+          if (touching) emit(g, 0);
           return;
         }
       }
-      c.count = contact::sphere_plane(p.x[i], p.radius[i], point, normal, c.g[0]) ? 1 : 0;
+      if (contact::sphere_plane(p.x[i], p.radius[i], point, normal, g)) emit(g, 0);
       return;
     }
     if constexpr (Shapes) {
       if (p.shape[i] == kEllipsoid) {
-        ellipsoid_annulus(p, i, c, held);
+        ellipsoid_annulus(p, i, held, emit);
         return;
       }
     }
-    c.count = contact::sphere_annulus(p.x[i], p.radius[i], annulus(), c.g[0]) ? 1 : 0;
+    if (contact::sphere_annulus(p.x[i], p.radius[i], annulus(), g)) emit(g, 0);
   }
 
   bool touches(const Vec3& x, double r) const {
@@ -162,21 +162,19 @@ struct PlaneWall : WallCommon {
   // own slot. A lone contact (face or rim), or a face contact beside a rim
   // one, continues the slot that holds history if only one does: it is the
   // contact of the previous step, moved (e.g. from the rim onto the face).
-  template <class Held>
-  GRAINS_INLINE void ellipsoid_annulus(const ParticleStore& p, std::size_t i, WallContacts& c, Held&& held) const {
+  template <class Held, class Emit>
+  GRAINS_INLINE void ellipsoid_annulus(const ParticleStore& p, std::size_t i, Held&& held, Emit&& emit) const {
     const contact::AnnulusContacts a =
         contact::ellipsoid_annulus_contacts({p.x[i], p.semi_axes[i], p.orientation[i]}, annulus());
-    c.count = a.count;
-    c.slot[0] = a.slot[0];
-    c.slot[1] = a.slot[1];
+    int slot[2] = {a.slot[0], a.slot[1]};
     if (a.count == 1 || a.face[0]) {
       const bool h0 = held(0), h1 = held(1);
       if (h0 != h1) {
-        c.slot[0] = h0 ? 0 : 1;
-        c.slot[1] = 1 - c.slot[0];
+        slot[0] = h0 ? 0 : 1;
+        slot[1] = 1 - slot[0];
       }
     }
-    for (int k = 0; k < a.count; ++k) c.g[k] = a.g[k];
+    for (int k = 0; k < a.count; ++k) emit(a.g[k], slot[k]);
   }
 };
 

@@ -61,18 +61,21 @@ class WallStage final : public Stage {
         (void)k;
         return false;
       };
-      WallContacts c;
-      wall.template contacts<Shapes>(p, i, c, held);
-      bool used[WallContacts::kMax] = {false, false};
-      for (int k = 0; k < c.count; ++k) {
-        used[c.slot[k]] = true;
-        WallContact<Law, Law::needs_rotation || Shapes>::apply(p, i, c.g[k], wall.velocity,
+      unsigned used = 0;  // the slots a contact used this step
+      wall.template contacts<Shapes>(p, i, held, [&](const contact::ContactGeometry& g, int slot) {
+        used |= 1u << slot;
+        WallContact<Law, Law::needs_rotation || Shapes>::apply(p, i, g, wall.velocity,
                                                               s.pairs(p.material[i], wall.material), s.clock.dt,
-                                                              H > 0 ? hist + c.slot[k] * H : nullptr);
+                                                              H > 0 ? hist + slot * H : nullptr);
+      });
+      if constexpr (H > 0) {
+        if (used == 0) {
+          std::fill_n(hist, H * wall.history_slots, 0.0);
+        } else {
+          for (int k = 0; k < wall.history_slots; ++k)
+            if (!(used >> k & 1u)) std::fill_n(hist + k * H, H, 0.0);
+        }
       }
-      if constexpr (H > 0)
-        for (int k = 0; k < wall.history_slots; ++k)
-          if (!used[k]) std::fill_n(hist + k * H, H, 0.0);
     });
   }
 };

@@ -6,9 +6,10 @@
 //   from_keys(KeyReader&)      the wall from its keys (the parser reports errors with their location)
 //   slots(ellipsoids)          history slots per particle (contacts a grain can have with it at once)
 //   near(x, reach)             may a particle at x with bounding radius + skin = reach touch it?
-//   contacts<Shapes>(p, i, c, held)
-//                              the contacts of particle i (sphere, or ellipsoid when Shapes), each
-//                              with the history slot it continues; held(k): slot k holds history
+//   contacts<Shapes>(p, i, held, emit)
+//                              emit(geometry, slot) for each contact of particle i (sphere, or
+//                              ellipsoid when Shapes), slot the history slot it continues (< 32);
+//                              held(k): slot k holds history
 //   touches(x, r), touches(ellipsoid)
 //                              any contact at all (insertion obstacles, `grains analyze`)
 //   translate(d), position()   prescribed motion and the checkpointed pose
@@ -39,14 +40,6 @@ struct WallCommon {
   /// history_slot on, history_slots of them (set by build_scene from slots()).
   int history_slot = 0;
   int history_slots = 1;
-};
-
-/// Up to two simultaneous contacts of one particle with one wall.
-struct WallContacts {
-  static constexpr int kMax = 2;
-  int count = 0;
-  contact::ContactGeometry g[kMax];
-  int slot[kMax] = {0, 1};  // history slot of g[k], distinct, < the wall's history_slots
 };
 
 /// A wall's surface for output: quads (4 point indices) into `points`.

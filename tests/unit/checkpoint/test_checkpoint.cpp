@@ -6,6 +6,8 @@
 
 #include "io/checkpoint/checkpoint.hpp"
 #include "io/checkpoint/h5_file.hpp"
+
+#include <hdf5.h>
 #include "tests/unit/checkpoint/checkpoint_scene.hpp"
 
 namespace grains::test {
@@ -53,6 +55,33 @@ TEST(Checkpoint, RoundTripRestoresEveryFieldListAndWall) {
   EXPECT_EQ(f.read_attribute("/clock/time", "units"), "s");
   EXPECT_EQ(f.shape("/particles/position"), (std::pair<std::size_t, std::size_t>{300, 3}));
   EXPECT_EQ(f.shape("/neighbor/history").second, 6u);  // tangential + rolling
+}
+
+TEST(Checkpoint, ReadsTheWallNearListsOfEarlierCheckpoints) {
+  // Before 2026-11-26 a checkpoint kept the planes' and the cylinders' near
+  // lists in groups of their own: rewrite a new file into that layout (HDF5
+  // links moved) and read it back.
+  TempDir tmp("old_near");
+  auto a = make(silo_case());
+  a.pipeline.initialize(a.scene);
+  for (int k = 0; k < 437; ++k) a.pipeline.step(a.scene);
+  const fs::path file = tmp.path / "x.h5";
+  io::write_checkpoint(file, a.scene, {"silo.yaml", "text", "effective", {}, {}, {}});
+  ASSERT_EQ(a.scene.neighbors.wall_near.size(), 2u);  // the floor, then the silo (its list may be empty)
+  ASSERT_FALSE(a.scene.neighbors.wall_near[0].empty());
+  {
+    const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    for (const char* g : {"/neighbor/plane_near", "/neighbor/cylinder_near"}) H5Gclose(H5Gcreate2(f, g, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    EXPECT_GE(H5Lmove(f, "/neighbor/wall_near/0", f, "/neighbor/plane_near/0", H5P_DEFAULT, H5P_DEFAULT), 0);
+    EXPECT_GE(H5Lmove(f, "/neighbor/wall_near/1", f, "/neighbor/cylinder_near/0", H5P_DEFAULT, H5P_DEFAULT), 0);
+    EXPECT_GE(H5Ldelete(f, "/neighbor/wall_near", H5P_DEFAULT), 0);
+    H5Fclose(f);
+  }
+  auto b = make(silo_case());
+  (void)io::read_checkpoint(file, b.scene);
+  EXPECT_EQ(a.scene.neighbors.wall_near, b.scene.neighbors.wall_near);
+  expect_same_state(a.scene, b.scene);
 }
 
 TEST(Checkpoint, ContinuationIsBitwiseIdentical) {
