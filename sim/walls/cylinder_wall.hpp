@@ -49,17 +49,21 @@ struct CylinderWall : WallCommon {
   /// The surface widened by the skin; a non-spherical particle (radius = its
   /// bounding sphere) may touch it at a point up to its radius along the axis
   /// from its centre.
-  bool near(const Vec3& x, double r, double skin, bool shapes) const {
+  void near_list(const ParticleStore& p, std::size_t n, double skin, bool shapes,
+                 std::vector<std::uint32_t>& out) const {
     auto s = surface;
     s.t_min -= skin;
     s.t_max += skin;
     s.radius += s.inside ? -skin : skin;
-    if (shapes) {
-      s.t_min -= r;
-      s.t_max += r;
-    }
     contact::ContactGeometry g;
-    return contact::sphere_cylinder(x, r, s, g);
+    for (std::size_t i = 0; i < n; ++i) {
+      auto si = s;
+      if (shapes) {
+        si.t_min -= p.radius[i];
+        si.t_max += p.radius[i];
+      }
+      if (contact::sphere_cylinder(p.x[i], p.radius[i], si, g)) out.push_back(static_cast<std::uint32_t>(i));
+    }
   }
 
   template <bool Shapes, class Held, class Emit>

@@ -68,10 +68,21 @@ struct PlaneWall : WallCommon {
 
   int slots(bool ellipsoids) const { return ellipsoids && finite() ? 2 : 1; }
 
-  bool near(const Vec3& x, double r, double skin, bool /*shapes*/) const {
-    const double reach = r + skin;
-    if (finite()) return (x - contact::annulus_nearest(x, annulus())).squaredNorm() < reach * reach;
-    return contact::plane_distance(x, point, normal) < reach;
+  /// The particles [0, n) within their radius + skin of the plane (or annulus).
+  void near_list(const ParticleStore& p, std::size_t n, double skin, bool /*shapes*/,
+                 std::vector<std::uint32_t>& out) const {
+    if (finite()) {  // touched from both sides and on its rims
+      const auto a = annulus();
+      for (std::size_t i = 0; i < n; ++i) {
+        const double reach = p.radius[i] + skin;
+        if ((p.x[i] - contact::annulus_nearest(p.x[i], a)).squaredNorm() < reach * reach)
+          out.push_back(static_cast<std::uint32_t>(i));
+      }
+      return;
+    }
+    const Vec3 q = point, m = normal;
+    for (std::size_t i = 0; i < n; ++i)
+      if (contact::plane_distance(p.x[i], q, m) < p.radius[i] + skin) out.push_back(static_cast<std::uint32_t>(i));
   }
 
   template <bool Shapes, class Held, class Emit>

@@ -47,10 +47,14 @@ class WallStage final : public Stage {
 
  private:
   template <class K>
-  static void run_wall(Scene& s, const K& wall, const std::vector<std::uint32_t>& near) {
+  static void run_wall(Scene& s, const K& wall_in_scene, const std::vector<std::uint32_t>& near) {
+    // A copy the force stores cannot alias: its fields stay in registers and
+    // its kind's branches (e.g. finite or not) are decided once per wall.
+    const K wall = wall_in_scene;
     ParticleStore& p = s.particles;
     constexpr int H = Law::history_size;
     const int WH = p.wall_history_size();
+    const int slots = wall.history_slots;
     const auto nn = static_cast<std::ptrdiff_t>(near.size());
     // Each particle appears once per wall: rows are independent.
     parallel_for(s.deterministic && use_threads(nn, 256), nn, [&](std::ptrdiff_t m) {
@@ -69,10 +73,10 @@ class WallStage final : public Stage {
                                                               H > 0 ? hist + slot * H : nullptr);
       });
       if constexpr (H > 0) {
-        if (used == 0) {
-          std::fill_n(hist, H * wall.history_slots, 0.0);
+        if (slots == 1) {  // most walls: one fill of known size
+          if (used == 0) std::fill_n(hist, H, 0.0);
         } else {
-          for (int k = 0; k < wall.history_slots; ++k)
+          for (int k = 0; k < slots; ++k)
             if (!(used >> k & 1u)) std::fill_n(hist + k * H, H, 0.0);
         }
       }

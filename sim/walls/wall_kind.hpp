@@ -5,7 +5,9 @@
 //   summary(), keys()          its documentation and case-file keys, besides type, name, material, velocity
 //   from_keys(KeyReader&)      the wall from its keys (the parser reports errors with their location)
 //   slots(ellipsoids)          history slots per particle (contacts a grain can have with it at once)
-//   near(x, reach)             may a particle at x with bounding radius + skin = reach touch it?
+//   near_list(p, n, skin, shapes, out)
+//                              the particles of [0, n) that may touch it before they move the skin
+//                              (bounding radius + skin; rebuilt with the neighbour list)
 //   contacts<Shapes>(p, i, held, emit)
 //                              emit(geometry, slot) for each contact of particle i (sphere, or
 //                              ellipsoid when Shapes), slot the history slot it continues (< 32);
