@@ -4,7 +4,7 @@
 // about shapes: it consumes a contact::ContactGeometry and the relative
 // motion at the contact point. An absent slot is an empty struct, so its
 // code and its history vanish at compile time (no run-time "enabled" flags).
-// The normal law hands the other slots a law-neutral NormalState
+// The normal law hands the other slots a law-neutral normal state
 // (normal_state.hpp). The registries of each slot are below and in
 // normal_laws.hpp.
 #include <string>
@@ -52,7 +52,7 @@ struct ContactLaw {
                                 double* hist) {
     const Eigen::Vector3d& n = g.normal;
     const double vn = v_rel.dot(n);
-    const NormalState ns = N::evaluate(g.overlap, -vn, g.radius, m, p);
+    const auto ns = N::evaluate(g.overlap, -vn, g.radius, m, p);
     Result out;
     out.force = n * (ns.force - C::force(g.overlap, g.radius, p));
     if constexpr (T::history_size > 0) {
@@ -85,7 +85,7 @@ struct ContactLaw {
       const double vn = v_rel.dot(n);
       if constexpr (T::history_size > 0) T::rate(v_rel - n * vn, rate);
       if constexpr (R::history_size > 0) {
-        const NormalState ns = N::evaluate(g.overlap, -vn, g.radius, m, p);
+        const auto ns = N::evaluate(g.overlap, -vn, g.radius, m, p);
         R::rate(n, w_rel, ns, g.radius, p, rate + T::history_size);
       }
     }

@@ -20,6 +20,21 @@
 
 namespace grains::sim {
 
+/// The normal state of a Hertz contact (normal_state.hpp).
+struct HertzState {
+  double force;    // clamped: >= 0
+  double load;     // = force
+  double sqrt_Rd;  // sqrt(R* d), the Hertz contact radius
+  double scale;    // sqrt(m* K d^{1/2}): the normal damping coefficient is a times this
+  GRAINS_INLINE double stiffness(const PairParams& p) const { return 2.0 * p.E_eff * sqrt_Rd; }
+  /// Mindlin: k_t = 8 G* sqrt(R* d).
+  GRAINS_INLINE double tangential_stiffness(const PairParams& p) const { return 8.0 * p.G_eff * sqrt_Rd; }
+  /// eta_t = a sqrt(2/3) sqrt(m k_t) = a 2 sqrt(G*/E*) sqrt(m K d^{1/2}) (no extra square root).
+  GRAINS_INLINE double tangential_damping(const PairParams& p) const {
+    return p.damping * p.tangential_damping_ratio * scale;
+  }
+};
+
 struct HertzNormal {
   static constexpr const char* name = "hertz";
   /// The name of the tangential spring it pairs with (contact.tangential).
@@ -45,15 +60,14 @@ struct HertzNormal {
 
   /// d: overlap; d_dot: rate of overlap (approach > 0); R: effective radius; m: effective mass.
   /// Three square roots per contact: sqrt(R), sqrt(d) and the damping scale.
-  static GRAINS_INLINE NormalState evaluate(double d, double d_dot, double R, double m, const PairParams& p) {
+  static GRAINS_INLINE HertzState evaluate(double d, double d_dot, double R, double m, const PairParams& p) {
     const double sR = std::sqrt(R), sd = std::sqrt(d);
     const double sqrt_Rd = sR * sd;
     const double K = (4.0 / 3.0) * p.E_eff * sR;
     const double scale = std::sqrt(m * K * sd);  // = sqrt(m* K) d^{1/4}
     const double f = K * d * sd + p.damping * scale * d_dot;
     const double fc = f > 0 ? f : 0.0;
-    // Mindlin: k_t = 8 G* sqrt(R* d); eta_t = a sqrt(2/3) sqrt(m k_t) = a 2 sqrt(G*/E*) sqrt(m K d^{1/2}).
-    return {fc, fc, 2.0 * p.E_eff * sqrt_Rd, 8.0 * p.G_eff * sqrt_Rd, p.damping * p.tangential_damping_ratio * scale};
+    return {fc, fc, sqrt_Rd, scale};
   }
 
   /// The time scale a step is compared with: the Rayleigh time of the

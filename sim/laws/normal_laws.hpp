@@ -10,7 +10,7 @@
 //                                  LawValues order, with units, defaults and ranges
 //   check(values)                  "" or what is wrong with the keys given (defaults filled in)
 //   prepare(PairParams&, values)   per material pair at set-up: calibration into PairParams
-//   evaluate(d, d_dot, R*, m*, p)  the NormalState of one contact (inlined into every contact loop)
+//   evaluate(d, d_dot, R*, m*, p)  its normal state of one contact (normal_state.hpp) (inlined into every contact loop)
 //   step_scale(pairs, grains)      the time scale the time step is checked against
 //   examples()                     valid values, one per way of giving the law (the property tests run
 //                                  every law with each)

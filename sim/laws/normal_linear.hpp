@@ -30,6 +30,17 @@
 
 namespace grains::sim {
 
+/// The normal state of a linear contact (normal_state.hpp).
+struct LinearState {
+  double force;  // unclamped unless limit_force
+  double load;   // max(0, force)
+  double kn, gn;  // this contact's k_n and gamma_n
+  double kappa, x;  // k_t / k_n, gamma_t / gamma_n
+  GRAINS_INLINE double stiffness(const PairParams&) const { return kn; }
+  GRAINS_INLINE double tangential_stiffness(const PairParams&) const { return kappa * kn; }
+  GRAINS_INLINE double tangential_damping(const PairParams&) const { return x * gn; }
+};
+
 struct LinearNormal {
   static constexpr const char* name = "linear";
   static constexpr const char* tangential_name = "linear";
@@ -127,12 +138,12 @@ struct LinearNormal {
     gn = c[sGamma] >= 0 ? c[sGamma] : c[sG1] * std::sqrt(m * kn);
   }
 
-  static GRAINS_INLINE NormalState evaluate(double d, double d_dot, double R, double m, const PairParams& p) {
+  static GRAINS_INLINE LinearState evaluate(double d, double d_dot, double R, double m, const PairParams& p) {
     double kn, gn;
     coefficients(R, m, p, kn, gn);
     const double f = kn * d + gn * d_dot;
     const double load = f > 0 ? f : 0.0;
-    return {p.normal[sLimit] != 0 ? load : f, load, kn, p.normal[sKappa] * kn, p.normal[sX] * gn};
+    return {p.normal[sLimit] != 0 ? load : f, load, kn, gn, p.normal[sKappa], p.normal[sX]};
   }
 
   /// The contact time t_c = pi / sqrt(k_n/m* - (gamma_n/2m*)^2) of the

@@ -7,7 +7,7 @@
 //    rolling spring of stiffness k_r = 2.25 S_n mu_r^2 R*^2 on the relative
 //    rotation, torque limited to mu_r R* F_n (full mobilisation). The torque
 //    is kept as 3 doubles of history, rotated into the tangent plane. S_n
-//    and F_n are the normal law's (NormalState: stiffness, load).
+//    and F_n are the normal law's (normal_state.hpp: stiffness, load).
 // Case-file key: materials[].rolling_friction.
 #include <cmath>
 
@@ -22,11 +22,13 @@ struct NoRolling {
   static constexpr int history_size = 0;
   static constexpr bool needs_rotation = false;
   static constexpr const char* name = "none";
-  static GRAINS_INLINE Eigen::Vector3d torque(const Eigen::Vector3d&, const Eigen::Vector3d&, const NormalState&, double,
+  template <class NS>
+  static GRAINS_INLINE Eigen::Vector3d torque(const Eigen::Vector3d&, const Eigen::Vector3d&, const NS&, double,
                                        const PairParams&, double, double*) {
     return Eigen::Vector3d::Zero();
   }
-  static GRAINS_INLINE void rate(const Eigen::Vector3d&, const Eigen::Vector3d&, const NormalState&, double,
+  template <class NS>
+  static GRAINS_INLINE void rate(const Eigen::Vector3d&, const Eigen::Vector3d&, const NS&, double,
                                  const PairParams&, double*) {}
 };
 
@@ -35,8 +37,9 @@ struct EpsdRolling {
   static constexpr bool needs_rotation = true;
   static constexpr const char* name = "epsd";
   /// w_rel = omega_i - omega_j. Returns the rolling torque on i (j gets minus it).
+  template <class NS>
   static GRAINS_INLINE Eigen::Vector3d torque(const Eigen::Vector3d& n, const Eigen::Vector3d& w_rel,
-                                       const NormalState& ns, double R, const PairParams& p, double dt,
+                                       const NS& ns, double R, const PairParams& p, double dt,
                                        double* h) {
     Eigen::Map<Eigen::Vector3d> mr(h);
     const double len2 = mr.squaredNorm();
@@ -53,13 +56,15 @@ struct EpsdRolling {
     return mr;
   }
   /// Rolling stiffness k_r = 2.25 S_n mu_r^2 R*^2.
-  static GRAINS_INLINE double stiffness(const NormalState& ns, double R, const PairParams& p) {
-    return 2.25 * ns.stiffness * p.rolling_friction * p.rolling_friction * R * R;
+  template <class NS>
+  static GRAINS_INLINE double stiffness(const NS& ns, double R, const PairParams& p) {
+    return 2.25 * ns.stiffness(p) * p.rolling_friction * p.rolling_friction * R * R;
   }
   /// d m_r/dt = -k_r w_r (w_r: w_rel in the tangent plane), for integrators
   /// that carry the torque in their ODE state (integrate/arkode.hpp);
   /// torque() with dt = 0 then projects it (length kept, limit).
-  static GRAINS_INLINE void rate(const Eigen::Vector3d& n, const Eigen::Vector3d& w_rel, const NormalState& ns,
+  template <class NS>
+  static GRAINS_INLINE void rate(const Eigen::Vector3d& n, const Eigen::Vector3d& w_rel, const NS& ns,
                                  double R, const PairParams& p, double* out) {
     const Eigen::Vector3d wr = w_rel - n * n.dot(w_rel);
     Eigen::Map<Eigen::Vector3d> r(out);

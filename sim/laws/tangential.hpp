@@ -5,7 +5,7 @@
 //  * SpringTangential: an incremental spring on the accumulated tangential
 //    displacement xi (3 doubles of history per contact) with a dashpot,
 //    Coulomb limit |F_t| <= mu F_load. Its stiffness and damping are the ones
-//    the normal law pairs with it (NormalState): with Hertz, Mindlin's no-slip
+//    the normal law pairs with it (normal_state.hpp): with Hertz, Mindlin's no-slip
 //    spring k_t = 8 G* sqrt(R* d) and eta_t = a sqrt(2/3) sqrt(m* k_t) (the
 //    same calibrated ratio as the normal slot), named "mindlin"; with the
 //    linear law, k_t = kappa k_n and gamma_t = x gamma_n, named "linear". The
@@ -27,8 +27,9 @@ struct NoTangential {
   static constexpr const char* name = "none";
   template <class Normal>
   static const char* label() { return name; }
-  static GRAINS_INLINE Eigen::Vector3d force(const Eigen::Vector3d&, const Eigen::Vector3d&, const NormalState&,
-                                      double, const PairParams&, double, double*) {
+  template <class NS>
+  static GRAINS_INLINE Eigen::Vector3d force(const Eigen::Vector3d&, const Eigen::Vector3d&, const NS&, double,
+                                             const PairParams&, double, double*) {
     return Eigen::Vector3d::Zero();
   }
   static GRAINS_INLINE void rate(const Eigen::Vector3d&, double*) {}
@@ -42,15 +43,16 @@ struct SpringTangential {
   template <class Normal>
   static const char* label() { return Normal::tangential_name; }
   /// n: unit normal (j -> i); vt: tangential relative velocity of i w.r.t. j at the contact point.
-  static GRAINS_INLINE Eigen::Vector3d force(const Eigen::Vector3d& n, const Eigen::Vector3d& vt, const NormalState& ns,
-                                      double m, const PairParams& p, double dt, double* h) {
+  template <class NS>
+  static GRAINS_INLINE Eigen::Vector3d force(const Eigen::Vector3d& n, const Eigen::Vector3d& vt, const NS& ns,
+                                             double m, const PairParams& p, double dt, double* h) {
     Eigen::Map<Eigen::Vector3d> xi(h);
     // Project the stored spring onto the current tangent plane. (Its length
     // changes by a factor cos(angle turned in one step): second order in dt.)
     xi -= n * n.dot(xi);
     xi += vt * dt;
-    const double kt = ns.tangential_stiffness;
-    const double eta = ns.tangential_damping;
+    const double kt = ns.tangential_stiffness(p);
+    const double eta = ns.tangential_damping(p);
     (void)m;
     Eigen::Vector3d ft = -kt * xi - eta * vt;
     const double limit = p.friction * ns.load;
