@@ -245,8 +245,12 @@ class CaseParser {
                  "tangential: " + tangential + " does not pair with model: " + N::name + "; use '" +
                      N::tangential_name + "', 'none' or 'auto'");
     });
-    c_.scene.rolling = slot(v_.string(n, d, "rolling", "contact", "auto"));
-    c_.scene.cohesion = slot(v_.string(n, d, "cohesion", "contact", "auto"));
+    const std::string rolling = v_.string(n, d, "rolling", "contact", "auto");
+    const std::string cohesion = v_.string(n, d, "cohesion", "contact", "auto");
+    c_.scene.rolling = slot(rolling);
+    c_.scene.cohesion = slot(cohesion);
+    if (c_.scene.rolling == sim::SlotChoice::On) c_.scene.rolling_law = rolling;
+    if (c_.scene.cohesion == sim::SlotChoice::On) c_.scene.cohesion_law = cohesion;
     const YAML::Node pairs = n["pairs"];
     if (!pairs) return;
     if (!pairs.IsSequence()) {

@@ -44,20 +44,17 @@ void add_law(Pipeline& p, const SceneNeeds& n) {
   add_contact_stages<Law>(p, n);
 }
 
+// The slots' laws by their registry names (SceneNeeds: "none" when off).
 template <class N, class T, class R>
 void dispatch_cohesion(Pipeline& p, const SceneNeeds& n) {
-  if (n.cohesion)
-    add_law<ContactLaw<N, T, R, SjkrCohesion>>(p, n);
-  else
-    add_law<ContactLaw<N, T, R, NoCohesion>>(p, n);
+  if (!with_type_named(CohesionLaws{}, n.cohesion_law, [&]<class C>() { add_law<ContactLaw<N, T, R, C>>(p, n); }))
+    throw SetupError("unknown cohesion law '" + n.cohesion_law + "'");
 }
 
 template <class N, class T>
 void dispatch_rolling(Pipeline& p, const SceneNeeds& n) {
-  if (n.rolling)
-    dispatch_cohesion<N, T, EpsdRolling>(p, n);
-  else
-    dispatch_cohesion<N, T, NoRolling>(p, n);
+  if (!with_type_named(RollingLaws{}, n.rolling_law, [&]<class R>() { dispatch_cohesion<N, T, R>(p, n); }))
+    throw SetupError("unknown rolling law '" + n.rolling_law + "'");
 }
 
 // The contact stages of the scene's normal law (a name from the registry,
@@ -113,8 +110,8 @@ void add_arkode(Pipeline& p, const Scene& s, const SceneConfig& c, const SceneNe
   layout.rigid = n.ellipsoids;
   layout.rotation = n.rotation && !n.ellipsoids;
   layout.clumps = n.clumps;
-  layout.tangential_history = n.tangential ? 3 : 0;
-  layout.rolling_history = n.rolling ? 3 : 0;
+  layout.tangential_history = n.tangential_history;
+  layout.rolling_history = n.rolling_history;
   layout.pw85_slot = n.ellipsoids;
   ArkodeScales scales;
   const auto& r = s.particles.radius;

@@ -11,6 +11,7 @@
 
 #include "contact/ellipsoid/ellipsoid.hpp"
 #include "sim/insert/insertion_stage.hpp"
+#include "sim/laws/contact_law.hpp"
 #include "sim/laws/normal_laws.hpp"
 #include "sim/scene/placement.hpp"
 #include "sim/integrate/clump_bodies.hpp"
@@ -92,11 +93,19 @@ SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs) {
   };
   for (const auto& s : c.sets) shapes(s);
   for (const auto& ins : c.insertions) shapes(ins.grains);
+  // The slots' laws by name, from their registries.
+  auto pick = [](bool on, const std::string& asked, std::vector<std::string> names) {
+    return !on ? std::string("none") : asked.empty() ? names.at(1) : asked;
+  };
+  n.rolling_law = pick(n.rolling, c.rolling_law, type_names(RollingLaws{}));
+  n.cohesion_law = pick(n.cohesion, c.cohesion_law, type_names(CohesionLaws{}));
+  n.tangential_history = n.tangential ? SpringTangential::history_size : 0;
+  with_type_named(RollingLaws{}, n.rolling_law, [&]<class R>() { n.rolling_history = R::history_size; });
   n.rotation = n.tangential || n.rolling || n.ellipsoids;
   n.gravity = c.gravity.squaredNorm() > 0;
   n.walls = c.walls.count() > 0;
   n.moving_walls = c.walls.max_displacement(1.0) > 0;
-  n.history_size = (n.tangential ? 3 : 0) + (n.rolling ? 3 : 0);
+  n.history_size = n.tangential_history + n.rolling_history;
   if (c.integrator == Integrator::Arkode && n.history_size > 0) {
     n.history_in_state = true;
     n.history_size *= 2;

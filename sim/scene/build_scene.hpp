@@ -12,6 +12,9 @@ namespace grains::sim {
 /// which optional particle fields, which stages.
 struct SceneNeeds {
   bool tangential = false, rolling = false, cohesion = false;
+  /// The rolling and cohesion laws by registry name ("none" when the slot is off).
+  std::string rolling_law = "none", cohesion_law = "none";
+  int tangential_history = 0, rolling_history = 0;  // doubles per contact of each slot's law
   bool rotation = false;
   bool ellipsoids = false;  // some particle is non-spherical: rigid-body integrator, shape dispatch
   bool clumps = false;      // some set is made of rigid clumps: body field, BodyStore and its stages

@@ -140,6 +140,10 @@ struct SceneConfig {
   NormalLawChoice normal;  // contact.model and its keys (sim/laws/normal_laws.hpp)
   std::string normal_where;  // file:line:column of contact.model
   SlotChoice tangential = SlotChoice::Auto, rolling = SlotChoice::Auto, cohesion = SlotChoice::Auto;
+  /// The law named for the rolling and cohesion slots when On (contact.rolling,
+  /// contact.cohesion: a name from their registries, sim/laws/contact_law.hpp);
+  /// empty: the slot's first law after "none".
+  std::string rolling_law, cohesion_law;
   double dt = 0;           // absolute time step, or 0
   double dt_rayleigh = 0;  // fraction of the Rayleigh time, or 0
   std::string dt_where;
