@@ -3,10 +3,8 @@
 #include <array>
 #include <cmath>
 
-#include "contact/cylinder.hpp"
 #include "contact/ellipsoid/ellipsoid_walls.hpp"
 #include "contact/ellipsoid/pw85.hpp"
-#include "contact/plane.hpp"
 
 namespace grains::sim::insert {
 

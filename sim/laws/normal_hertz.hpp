@@ -74,7 +74,7 @@ struct HertzNormal {
   /// smallest grain. Above 1 T_R contacts are unresolved; above 0.3 T_R their
   /// accuracy suffers.
   static StepScale step_scale(const PairTable&, const GrainExtremes& g) {
-    return {g.rayleigh_time, "Rayleigh times", "T_R", 1.0, 0.3};
+    return {g.rayleigh_time, "Rayleigh times", "T_R", 1.0, 0.3, true};
   }
 };
 

@@ -18,6 +18,9 @@ struct StepScale {
   const char* symbol = "";   // e.g. "T_R"
   double refuse = 1;         // dt above refuse * time is refused (Verlet)
   double warn = 0.3;         // dt above warn * time is warned about
+  /// The scale is the Rayleigh time: time.dt_rayleigh (at most 1) then
+  /// needs no check, and the refusal suggests it.
+  bool rayleigh = false;
 };
 
 }  // namespace grains::sim

@@ -190,7 +190,7 @@ Scene build_scene(SceneConfig& c) {
   msg.precision(4);
   if (c.dt_rayleigh > 0) c.dt = c.dt_rayleigh * extremes.rayleigh_time;
   const double tr = scale.time;
-  const bool rayleigh = tr == extremes.rayleigh_time;
+  const bool rayleigh = scale.rayleigh;
   // dt_rayleigh (validated at most 1) needs no check against the Rayleigh time itself.
   if (std::isfinite(tr) && tr > 0 && !(rayleigh && c.dt_rayleigh > 0)) {
     const double frac = c.dt / tr;

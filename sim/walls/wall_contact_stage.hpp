@@ -47,10 +47,7 @@ class WallStage final : public Stage {
 
  private:
   template <class K>
-  static void run_wall(Scene& s, const K& wall_in_scene, const std::vector<std::uint32_t>& near) {
-    // A copy the force stores cannot alias: its fields stay in registers and
-    // its kind's branches (e.g. finite or not) are decided once per wall.
-    const K wall = wall_in_scene;
+  static void run_wall(Scene& s, const K& wall, const std::vector<std::uint32_t>& near) {
     ParticleStore& p = s.particles;
     constexpr int H = Law::history_size;
     const int WH = p.wall_history_size();

@@ -97,6 +97,12 @@ TEST(NormalLawKeys, TimeStepCheckedAgainstTheContactTime) {
   auto m = errors_of(kCase + "contact: {model: linear, linear: {contact_time: 2.0e-6}}\n");
   EXPECT_NE(m.find("case.yaml:10:"), std::string::npos) << m;
   EXPECT_NE(m.find("is 0.5 contact times (t_c = 2e-06 s); above 0.3183"), std::string::npos) << m;
+  EXPECT_EQ(m.find("dt_rayleigh"), std::string::npos) << m;  // a Rayleigh fraction says nothing of t_c
+  std::string hertz = kCase;
+  hertz.replace(hertz.find("dt: 1.0e-6"), 10, "dt: 1.0e-3");
+  m = errors_of(hertz);
+  EXPECT_NE(m.find("Rayleigh times (T_R = "), std::string::npos) << m;
+  EXPECT_NE(m.find("or give time.dt_rayleigh instead"), std::string::npos) << m;
   auto s = make_simulation(parse_case(kCase + "contact: {model: linear, linear: {contact_time: 1.0e-5}}\n", "case.yaml"));
   ASSERT_EQ(s.c.scene.warnings.size(), 1u);
   EXPECT_NE(s.c.scene.warnings[0].find("0.1 contact times"), std::string::npos) << s.c.scene.warnings[0];
