@@ -7,6 +7,15 @@
 #include "postprocess/contacts.hpp"
 #include "postprocess/walls.hpp"
 
+#include <filesystem>
+#include <string>
+
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataWriter.h>
+
 namespace grains::postprocess {
 namespace {
 
@@ -144,6 +153,42 @@ TEST(Coordination, EllipsoidContactsFollowOrientation) {
   EXPECT_NEAR(c[0].overlap, 0.1, 1e-6);
   f.orientation[1] = Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitZ()));
   EXPECT_TRUE(find_contacts(f).empty());
+}
+
+// A walls file whose records this build cannot rebuild: a kind it does not
+// know (a newer grains) or a record of the wrong length: a clear error naming
+// the file, the wall and what is wrong.
+TEST(Coordination, WallRecordsThatCannotBeRebuiltAreReported) {
+  const auto dir = std::filesystem::temp_directory_path() / "grains_wall_records";
+  std::filesystem::create_directories(dir);
+  auto write = [&](const std::string& name, int values) {
+    vtkNew<vtkPolyData> poly;
+    vtkNew<vtkDoubleArray> r;
+    r->SetName(name.c_str());
+    for (int k = 0; k < values; ++k) r->InsertNextValue(k == 5 ? 1.0 : 0.0);
+    poly->GetFieldData()->AddArray(r);
+    const auto file = dir / (name + ".vtp");
+    vtkNew<vtkXMLPolyDataWriter> w;
+    w->SetInputData(poly);
+    w->SetFileName(file.c_str());
+    w->Write();
+    return file;
+  };
+  auto message = [](const std::filesystem::path& f) {
+    try {
+      (void)read_walls(f);
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const auto m1 = message(write("wall_0_teapot", 8));
+  EXPECT_NE(m1.find("wall 0 is of kind 'teapot', which this grains does not know"), std::string::npos) << m1;
+  const auto m2 = message(write("wall_3_plane", 5));
+  EXPECT_NE(m2.find("wall 3 (plane): malformed record of 5 numbers"), std::string::npos) << m2;
+  // A plane record of the right length rebuilds the plane.
+  EXPECT_EQ(read_walls(write("wall_0_plane", 8)).of<sim::PlaneWall>().size(), 1u);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
