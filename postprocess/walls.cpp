@@ -4,6 +4,9 @@
 #include <stdexcept>
 #include <string>
 
+#include <array>
+
+#include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkNew.h>
@@ -37,13 +40,44 @@ WallSet read_walls(const std::filesystem::path& vtp) {
     for (std::size_t k = 0; k < v.size(); ++k) v[k] = arr->GetComponent(static_cast<vtkIdType>(k), 0);
     records[std::stol(name.substr(5, us - 5))] = {name.substr(us + 1), std::move(v)};
   }
+  // The triangles of wall `index` as written (posed), for kinds rebuilt from their cells.
+  auto cells_of = [&](long index) {
+    sim::WallSurface s;
+    vtkDataArray* ids = poly->GetCellData() ? poly->GetCellData()->GetArray("wall") : nullptr;
+    if (!ids) return s;
+    std::map<vtkIdType, int> point;
+    for (vtkIdType c = 0; c < poly->GetNumberOfCells(); ++c) {
+      if (static_cast<long>(ids->GetComponent(c, 0)) != index) continue;
+      vtkIdType n = 0;
+      const vtkIdType* pts = nullptr;
+      poly->GetCellPoints(c, n, pts);
+      if (n != 3) continue;
+      std::array<int, 3> t{};
+      for (int k = 0; k < 3; ++k) {
+        auto [it, fresh] = point.try_emplace(pts[k], static_cast<int>(s.points.size()));
+        if (fresh) {
+          double x[3];
+          poly->GetPoint(pts[k], x);
+          s.points.emplace_back(x[0], x[1], x[2]);
+        }
+        t[static_cast<std::size_t>(k)] = it->second;
+      }
+      s.triangles.push_back(t);
+    }
+    return s;
+  };
   for (const auto& [index, rec] : records) {
     bool known = false;
     sim::for_each_type(sim::WallKinds{}, [&]<class K>() {
       if (rec.first != K::kind) return;
       known = true;
       K wall;
-      if (!K::from_record(rec.second, wall))
+      bool ok;
+      if constexpr (requires(const sim::WallSurface& c) { K::from_record(rec.second, c, wall); })
+        ok = K::from_record(rec.second, cells_of(index), wall);
+      else
+        ok = K::from_record(rec.second, wall);
+      if (!ok)
         throw std::runtime_error(vtp.string() + ": wall " + std::to_string(index) + " (" + rec.first +
                                  "): malformed record of " + std::to_string(rec.second.size()) + " numbers");
       w.add(wall);

@@ -1,5 +1,6 @@
 #include "io/case/case.hpp"
 #include "io/case/clump_shapes.hpp"
+#include "io/mesh/mesh_reader.hpp"
 #include "sim/laws/normal_laws.hpp"
 #include "sim/walls/wall_kinds.hpp"
 
@@ -32,7 +33,20 @@ void register_io_docs() {
           sim::key("progress", K::Bool, "print a progress line to stderr (also -q)").def("true"),
           sim::key("progress_interval", K::Number, "wall-clock time between progress lines").def("2").si("s").in(0, inf),
           sim::key("solid_fraction", K::Map, "solid-fraction field as VTK image data (see output.solid_fraction)"),
-          sim::key("mass", K::Map, "grains and their mass against time in mass.csv, e.g. silo discharge (see output.mass)")}});
+          sim::key("mass", K::Map, "grains and their mass against time in mass.csv, e.g. silo discharge (see output.mass)"),
+          sim::key("wall_loads", K::Map, "force and torque on each wall against time in wall_loads.csv (see output.wall_loads)")}});
+    sim::register_effect_doc(
+        {"output.wall_loads", "output: {wall_loads: {...}}",
+         "One row per wall and interval in OUTDIR/wall_loads.csv: step, time_s, wall, name, kind, the force the "
+         "particles exert on the wall (fx_N, fy_N, fz_N), the torque about its load point (tx_Nm, ty_Nm, tz_Nm: a "
+         "mesh wall's torque_point, by default on its rotation axis; another wall's position) and, for a mesh wall, "
+         "the torque about its rotation axis (axial_torque_Nm: what a drum's or a mixer's drive supplies is minus "
+         "it). summary.json (stage_details) has each wall's mean over the rows from average_after on, and its last "
+         "row. Measured only when asked: without this block no wall stage sums loads.",
+         {sim::key("every", K::Number, "simulated time between rows; default the VTK frame cadence")
+              .si("s").in(0, inf, true),
+          sim::key("every_steps", K::Integer, "steps between rows (instead of every)").in(1, 1e15),
+          sim::key("average_after", K::Number, "the summary's mean is over rows at or after this time").def(0.0).si("s").in(0, inf)}});
     sim::register_effect_doc(
         {"output.mass", "output: {mass: {...}}",
          "One row per interval in OUTDIR/mass.csv: step, time_s, grains and mass_kg (spheres, ellipsoids, whole "
@@ -604,8 +618,9 @@ class CaseParser {
   // A wall kind's own keys, read against its documentation (sim/walls/wall_kind.hpp).
   class WallKeys final : public sim::KeyReader {
    public:
-    WallKeys(Validator& v, const YAML::Node& map, const EffectDoc& d, std::string ctx)
-        : v_(v), map_(map), d_(d), ctx_(std::move(ctx)) {}
+    WallKeys(Validator& v, const YAML::Node& map, const EffectDoc& d, std::string ctx, std::string base_dir,
+             std::vector<std::string>& warnings)
+        : v_(v), map_(map), d_(d), ctx_(std::move(ctx)), base_dir_(std::move(base_dir)), warnings_(warnings) {}
     bool has(const std::string& k) const override { return static_cast<bool>(map_[k]); }
     double number(const std::string& k, double fallback) override {
       const double def = d_.find(k) ? d_.find(k)->default_number : fallback;
@@ -613,6 +628,28 @@ class CaseParser {
     }
     Vec3 vec3(const std::string& k, const Vec3& fallback) override { return v_.vec3(map_, d_, k, ctx_, fallback); }
     bool boolean(const std::string& k, bool fallback) override { return v_.boolean(map_, d_, k, ctx_, fallback); }
+    std::string string(const std::string& k, const std::string& fallback) override {
+      return v_.string(map_, d_, k, ctx_, fallback);
+    }
+    std::shared_ptr<const mesh::TriangleMesh> surface_mesh(const std::string& k) override {
+      const std::string rel = v_.string(map_, d_, k, ctx_, "");
+      if (rel.empty()) return nullptr;
+      namespace fs = std::filesystem;
+      const fs::path path = fs::path(rel).is_absolute() ? fs::path(rel) : fs::path(base_dir_) / rel;
+      try {
+        mesh::ValidationOptions opt;
+        opt.wall_surface = true;
+        auto m = std::make_shared<mesh::TriangleMesh>(mesh::load_mesh(path.string(), opt));
+        for (const auto& w : m->warnings) warning(k, w);
+        return m;
+      } catch (const std::exception& e) {
+        error(k, std::string("cannot use the mesh: ") + e.what());
+        return nullptr;
+      }
+    }
+    void warning(const std::string& k, const std::string& msg) override {
+      warnings_.push_back(v_.where(map_[k] ? map_[k] : map_) + ": " + ctx_ + ": warning: " + msg);
+    }
     void error(const std::string& k, const std::string& msg) override {
       v_.error(map_[k] ? map_[k] : map_, ctx_, msg);
     }
@@ -622,6 +659,8 @@ class CaseParser {
     const YAML::Node& map_;
     const EffectDoc& d_;
     std::string ctx_;
+    std::string base_dir_;
+    std::vector<std::string>& warnings_;
   };
 
   void parse_walls(const YAML::Node& n) {
@@ -641,11 +680,12 @@ class CaseParser {
       if (!v_.check_map(w, d, ctx)) continue;
       sim::for_each_type(sim::WallKinds{}, [&]<class K>() {
         if (t.Scalar() != K::kind) return;
-        WallKeys keys(v_, w, d, ctx);
+        WallKeys keys(v_, w, d, ctx, c_.base_dir, c_.scene.warnings);
         K wall = K::from_keys(keys);
         wall.name = v_.string(w, d, "name", ctx, t.Scalar() + std::to_string(i));
         wall.material = material(w, d, ctx);
         wall.velocity = v_.vec3(w, d, "velocity", ctx);
+        wall.where = v_.where(w);
         c_.scene.walls.add(wall);
       });
     }
@@ -754,6 +794,18 @@ class CaseParser {
         if (sf["every"] && sf["every_steps"]) v_.error(sf["every_steps"], ctx, "give either every or every_steps, not both");
         c.every = v_.number(sf, sd, "every", ctx, 0);
         c.every_steps = v_.integer(sf, sd, "every_steps", ctx, 0);
+      }
+    }
+    if (const YAML::Node m = n["wall_loads"]) {
+      const auto& md = doc("output.wall_loads");
+      const std::string ctx = "output.wall_loads";
+      if (v_.check_map(m, md, ctx)) {
+        auto& c = o.wall_loads;
+        c.enabled = true;
+        if (m["every"] && m["every_steps"]) v_.error(m["every_steps"], ctx, "give either every or every_steps, not both");
+        c.every = v_.number(m, md, "every", ctx, 0);
+        c.every_steps = v_.integer(m, md, "every_steps", ctx, 0);
+        c.average_after = v_.number(m, md, "average_after", ctx, 0);
       }
     }
     if (const YAML::Node m = n["mass"]) {

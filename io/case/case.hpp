@@ -8,6 +8,7 @@
 #include "io/case/validator.hpp"
 #include "io/output/mass_output.hpp"
 #include "io/output/solid_fraction_output.hpp"
+#include "io/output/wall_load_output.hpp"
 #include "sim/scene/scene_config.hpp"
 
 namespace grains::io {
@@ -20,6 +21,7 @@ struct OutputConfig {
   double progress_interval = 2.0;  // wall-clock seconds between progress lines
   SolidFractionConfig solid_fraction;
   MassOutputConfig mass;
+  WallLoadConfig wall_loads;
 };
 
 /// Periodic HDF5 checkpoints (io/checkpoint): cadence and retention.

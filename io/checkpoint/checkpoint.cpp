@@ -59,10 +59,22 @@ void write_bodies(const h5::File& f, sim::BodyStore& b, std::size_t offset, std:
 }
 
 // Each wall's near list, by the walls' index across kinds.
-void write_wall_near(const h5::File& f, const std::vector<std::vector<std::uint32_t>>& near) {
+// Each wall's near list, by the walls' index across kinds, and what a kind
+// keeps per near particle (a mesh wall: its near triangles) when it has any.
+void write_wall_near(const h5::File& f, const std::vector<std::vector<std::uint32_t>>& near,
+                     const std::vector<sim::NearItems>& items = {}) {
   f.group("/neighbor/wall_near");
   for (std::size_t w = 0; w < near.size(); ++w)
     f.write_vector("/neighbor/wall_near/" + std::to_string(w), near[w], 1, "");
+  bool any = false;
+  for (const auto& it : items) any = any || !it.items.empty();
+  if (!any) return;
+  f.group("/neighbor/wall_items");
+  for (std::size_t w = 0; w < items.size(); ++w) {
+    if (items[w].items.empty()) continue;
+    f.write_vector("/neighbor/wall_items/" + std::to_string(w) + "_start", items[w].start, 1, "");
+    f.write_vector("/neighbor/wall_items/" + std::to_string(w), items[w].items, 1, "");
+  }
 }
 
 void write_neighbors(const h5::File& f, const sim::NeighborList& nl) {
@@ -80,7 +92,7 @@ void write_neighbors(const h5::File& f, const sim::NeighborList& nl) {
   f.write_scalar("/neighbor/build_time", b.time, "s");
   f.write_scalar("/neighbor/builds", static_cast<std::int64_t>(b.builds), "");
   f.write_scalar("/neighbor/build_growth", b.growth, "m");
-  write_wall_near(f, nl.wall_near);
+  write_wall_near(f, nl.wall_near, nl.wall_items);
 }
 
 // The dataset of one kind's positions (e.g. /walls/plane_point, /walls/cylinder_base).
@@ -98,6 +110,15 @@ void write_walls(const h5::File& f, const sim::Walls& walls) {
     for (const auto& w : walls.of<K>()) pos.push_back(w.position()), vel.push_back(w.velocity);
     f.write_vector(wall_position_dataset<K>(), pos, 1, "m");
     f.write_vector(std::string("/walls/") + K::kind + "_velocity", vel, 1, "m/s");
+    if constexpr (requires(K k) { k.motion_time; k.surface->triangles(); }) {
+      // A kind with its own motion clock (its pose is a function of it), and
+      // the size of its surface (a restart must use the same mesh).
+      std::vector<double> clock;
+      std::vector<std::int64_t> tris;
+      for (const auto& w : walls.of<K>()) clock.push_back(w.motion_time), tris.push_back(static_cast<std::int64_t>(w.surface->triangles()));
+      f.write_vector(std::string("/walls/") + K::kind + "_motion_time", clock, 1, "s");
+      f.write_vector(std::string("/walls/") + K::kind + "_triangles", tris, 1, "");
+    }
   });
 }
 
@@ -343,8 +364,19 @@ void read_neighbors(const h5::File& f, sim::Scene& s) {
         if (i >= n) throw CheckpointError(f.path() + ": wall near list out of range (corrupt checkpoint)");
     }
   };
+  nl.wall_items.assign(s.walls.count(), {});
   if (f.exists("/neighbor/wall_near")) {
     near("/neighbor/wall_near", s.walls.count());
+    for (std::size_t k = 0; k < s.walls.count(); ++k) {
+      const std::string ds = "/neighbor/wall_items/" + std::to_string(k);
+      if (!f.exists(ds)) continue;
+      auto& it = nl.wall_items[k];
+      f.read_vector(ds + "_start", it.start, f.shape(ds + "_start").first, 1);
+      f.read_vector(ds, it.items, f.shape(ds).first, 1);
+      bool ok = it.start.size() == nl.wall_near[k].size() + 1 && it.start.front() == 0 &&
+                it.start.back() == it.items.size() && std::is_sorted(it.start.begin(), it.start.end());
+      if (!ok) throw CheckpointError(f.path() + ": wall " + std::to_string(k) + "'s near items do not fit its near list (corrupt checkpoint)");
+    }
   } else {
     near("/neighbor/plane_near", s.walls.of<sim::PlaneWall>().size());
     near("/neighbor/cylinder_near", s.walls.of<sim::CylinderWall>().size());
@@ -370,6 +402,11 @@ void read_walls(const h5::File& f, sim::Walls& walls) {
     std::vector<sim::Vec3> pos;
     if (!ws.empty()) f.read_vector(wall_position_dataset<K>(), pos, ws.size(), 1);
     for (std::size_t w = 0; w < ws.size(); ++w) ws[w].position() = pos[w];
+    if constexpr (requires(K k) { k.motion_time; k.place(0.0); }) {
+      std::vector<double> clock;
+      if (!ws.empty()) f.read_vector(std::string("/walls/") + K::kind + "_motion_time", clock, ws.size(), 1);
+      for (std::size_t w = 0; w < ws.size(); ++w) ws[w].place(clock[w]);
+    }
   });
 }
 
@@ -398,6 +435,21 @@ void check_compatible(const h5::File& f, sim::Scene& s) {
     if (have != want)
       throw CheckpointError(file + ": " + std::to_string(have) + " " + K::kind + " wall(s), the case has " +
                             std::to_string(want));
+    if constexpr (requires(K k) { k.surface->triangles(); }) {
+      const std::string tds = std::string("/walls/") + K::kind + "_triangles";
+      std::vector<std::int64_t> tris;
+      if (want > 0) {
+        if (!f.exists(tds)) throw CheckpointError(file + ": has no " + tds + " (corrupt checkpoint)");
+        f.read_vector(tds, tris, want, 1);
+      }
+      for (std::size_t w = 0; w < want; ++w) {
+        const auto& wall = s.walls.of<K>()[w];
+        if (tris[w] != static_cast<std::int64_t>(wall.surface->triangles()))
+          throw CheckpointError(file + ": " + K::kind + " wall '" + wall.name + "' had " + std::to_string(tris[w]) +
+                                " triangles, its file '" + wall.file + "' now has " +
+                                std::to_string(wall.surface->triangles()) + ": the mesh changed since the checkpoint");
+      }
+    }
   });
   const std::size_t n = particle_count(f);
   s.particles.visit_fields([&](const char* name, const char*, auto& vec, int width) {

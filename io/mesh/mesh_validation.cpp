@@ -67,6 +67,22 @@ ValidationReport validate_mesh(TriangleMesh& mesh, const ValidationOptions& opt)
                                   .norm();
     if (repeated || area <= area_tol) degenerate.push_back(f);
   }
+  if (!degenerate.empty() && opt.wall_surface) {
+    // A wall's zero-area faces touch nothing: dropped, with a warning.
+    std::string msg = src + ": " + std::to_string(degenerate.size()) +
+                      " degenerate face(s) (a repeated vertex or zero area) dropped; first: face " +
+                      std::to_string(degenerate[0]);
+    std::vector<char> drop(static_cast<std::size_t>(nf), 0);
+    for (int f : degenerate) drop[static_cast<std::size_t>(f)] = 1;
+    std::vector<std::array<int, 3>> kept;
+    for (int f = 0; f < nf; ++f)
+      if (!drop[static_cast<std::size_t>(f)]) kept.push_back(mesh.faces[static_cast<std::size_t>(f)]);
+    mesh.faces = std::move(kept);
+    mesh.warnings.push_back(msg);
+    if (mesh.faces.empty()) throw MeshError(MeshErrorKind::empty, src + ": every face is degenerate (zero area)");
+    return {};
+  }
+  if (opt.wall_surface) return {};  // open, non-manifold and either orientation are fine for a wall
   if (!degenerate.empty()) {
     std::string msg = src + ": " + std::to_string(degenerate.size()) +
                       " degenerate face(s) (a repeated vertex or zero area); first:";

@@ -29,6 +29,10 @@ struct ValidationOptions {
   bool repair_orientation = true;
   double degenerate_area_rel = 1e-14;
   int max_locations = 5;  // how many offending edges/faces a message lists
+  /// A wall's surface, not a solid: only the syntax, finiteness and indices
+  /// are checked; degenerate faces are dropped (a warning); open,
+  /// non-manifold and inconsistently wound meshes are accepted as they are.
+  bool wall_surface = false;
 };
 
 struct ValidationReport {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "io/output/csv_rows.hpp"
 #include "sim/parallel/comm.hpp"
 #include "sim/parallel/exchange.hpp"
 
@@ -58,23 +59,7 @@ void MassOutput::resume(const sim::Scene& s) {
   }
   // Keep the header and the rows before the restart step, then write the
   // restored state's row and append after it.
-  std::vector<std::string> keep;
-  {
-    std::ifstream in(file_);
-    std::string line;
-    while (std::getline(in, line)) {
-      if (line.empty()) continue;
-      if (keep.empty()) {
-        keep.push_back(line);  // header
-        continue;
-      }
-      if (std::stoll(line.substr(0, line.find(','))) < s.clock.step) keep.push_back(line);
-    }
-  }
-  out_.open(file_, std::ios::trunc);
-  if (!out_) throw std::runtime_error("cannot write '" + file_.string() + "'");
-  if (keep.empty()) keep.push_back("step,time_s,grains,mass_kg,lost_particles");
-  for (const auto& l : keep) out_ << l << "\n";
+  reopen_before(out_, file_, "step,time_s,grains,mass_kg,lost_particles", s.clock.step);
   write_row(s);
 }
 

@@ -353,6 +353,12 @@ void VtkOutput::write_walls(const sim::Scene& s, const fs::path& file) const {
         wall_id->InsertNextValue(static_cast<int>(w));
         wall_kind->InsertNextValue(kind);
       }
+      for (const auto& t : surf.triangles) {
+        const vtkIdType ids[3] = {first + t[0], first + t[1], first + t[2]};
+        polys->InsertNextCell(3, ids);
+        wall_id->InsertNextValue(static_cast<int>(w));
+        wall_kind->InsertNextValue(kind);
+      }
       const auto rec = walls[k].record();
       vtkNew<vtkDoubleArray> r;
       r->SetName(("wall_" + std::to_string(w) + "_" + K::kind).c_str());

@@ -14,6 +14,7 @@
 #include <omp.h>
 
 #include "io/output/mass_output.hpp"
+#include "io/output/wall_load_output.hpp"
 #include "io/output/progress.hpp"
 #include "sim/neighbor/neighbor_stage.hpp"
 #include "sim/parallel/comm.hpp"
@@ -160,6 +161,13 @@ OutputStages add_output_stages(Simulation& s, const RunOptions& opt) {
                                : o.mass.every > 0    ? std::max<std::int64_t>(1, std::llround(o.mass.every / s.scene.clock.dt))
                                                      : frame_steps(o, s.scene.clock.dt);
     s.pipeline.add(std::make_unique<MassOutput>(opt.out_dir, o.mass, every));
+  }
+  if (o.wall_loads.enabled) {
+    const auto& wl = o.wall_loads;
+    const std::int64_t every = wl.every_steps > 0 ? wl.every_steps
+                               : wl.every > 0     ? std::max<std::int64_t>(1, std::llround(wl.every / s.scene.clock.dt))
+                                                  : frame_steps(o, s.scene.clock.dt);
+    s.pipeline.add(std::make_unique<WallLoadOutput>(opt.out_dir, wl, every));
   }
   if (o.progress && !opt.quiet) s.pipeline.add(std::make_unique<Progress>(*opt.log, o.progress_interval));
   // Last of the output phase: a checkpoint holds the frames of its own step.

@@ -169,7 +169,10 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   // Wall near lists (owned particles only: walls act on what a rank integrates).
   const bool shapes = p.fields().has(Field::SemiAxes);
   wall_near.assign(walls.count(), {});
-  walls.for_each([&](const auto& wall, std::size_t w) { wall.near_list(p, n_own, skin_, shapes, wall_near[w]); });
+  wall_items.assign(walls.count(), {});
+  walls.for_each([&](const auto& wall, std::size_t w) {
+    wall.near_list(p, n_own, skin_, shapes, wall_near[w], wall_items[w]);
+  });
 
   x_build_.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(n_own));
   build_time_ = time;

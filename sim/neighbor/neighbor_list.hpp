@@ -103,6 +103,8 @@ class NeighborList {
   std::vector<PairConstants> pair_constants;
   /// Per wall (Walls' index across kinds): the owned particles near it.
   std::vector<std::vector<std::uint32_t>> wall_near;
+  /// Per wall, what its kind keeps per near particle (a mesh: the triangles near it).
+  std::vector<NearItems> wall_items;
 
   const Stats& stats() const { return stats_; }
 

@@ -49,12 +49,12 @@ Scene gather_scene(Scene& s) {
   g.lost_particles = lost;
   g.deterministic = s.deterministic;
   g.growth = s.growth;  // the same on every rank
-  g.particles.configure(p.fields(), p.wall_history_size());
+  g.particles.configure(p.fields(), p.wall_history_size(), p.wall_tag_size());
   g.neighbors.configure(H, s.neighbors.skin());
   if (!comm.root()) return g;
 
   ParticleStore all;
-  all.configure(p.fields(), p.wall_history_size());
+  all.configure(p.fields(), p.wall_history_size(), p.wall_tag_size());
   const std::size_t rec = p.record_bytes();
   std::map<std::pair<std::int64_t, std::int64_t>, std::vector<double>> pairs;
   for (const auto& part : parts) {
@@ -117,6 +117,7 @@ Scene gather_scene(Scene& s) {
     nl.history.insert(nl.history.end(), hs[k]->begin(), hs[k]->end());
   }
   nl.wall_near.assign(g.walls.count(), {});
+  nl.wall_items.assign(g.walls.count(), {});
   NeighborList::BuildState b;
   b.time = s.clock.time;
   b.row_id = gp.id;  // no build positions: the next step rebuilds

@@ -79,7 +79,7 @@ IdBlock id_blocks(Scene& s) {
   for (std::size_t i = 0; i < p.n_owned(); ++i) p.pack(i, send[owner(cuts, p.id[i])]);
   auto recv = comm.alltoallv(send);
   auto& q = out.particles;
-  q.configure(p.fields(), p.wall_history_size());
+  q.configure(p.fields(), p.wall_history_size(), p.wall_tag_size());
   const std::size_t rec = p.record_bytes();
   for (const auto& part : recv)
     for (std::size_t k = 0; k + rec <= part.size(); k += rec) q.unpack_owned(part.data() + k);

@@ -64,6 +64,13 @@ struct GrowthServo {
   double phase_target = 0;
 };
 
+/// Force and torque a wall takes from the particles (torque about its load
+/// point: a mesh wall's torque_point, else its position).
+struct WallLoad {
+  Vec3 force{0, 0, 0};
+  Vec3 torque{0, 0, 0};
+};
+
 struct Scene {
   Domain domain;
   ParticleStore particles;
@@ -83,6 +90,9 @@ struct Scene {
   /// results do not depend on the thread or rank count. On whenever OpenMP
   /// runs more than one thread (race-free accumulation), or when asked.
   bool deterministic = false;
+  /// Each wall's load this step, from this rank's particles; empty unless
+  /// measured (output.wall_loads), so that no wall stage computes it otherwise.
+  std::vector<WallLoad> wall_loads;
 };
 
 }  // namespace grains::sim

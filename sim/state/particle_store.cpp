@@ -6,10 +6,11 @@
 
 namespace grains::sim {
 
-void ParticleStore::configure(FieldSet fields, int wall_history_size) {
+void ParticleStore::configure(FieldSet fields, int wall_history_size, int wall_tag_size) {
   if (size() != 0) throw std::logic_error("ParticleStore::configure after particles were added");
   fields_ = fields;
   wall_history_size_ = fields.has(Field::WallHistory) ? wall_history_size : 0;
+  wall_tag_size_ = fields.has(Field::WallHistory) ? wall_tag_size : 0;
 }
 
 std::vector<std::string> ParticleStore::field_names() const {

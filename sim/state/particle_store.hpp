@@ -62,10 +62,13 @@ class ParticleStore {
  public:
   /// Declare the optional fields before adding particles. wall_history_size is
   /// the number of doubles of history kept per particle for all walls together.
-  void configure(FieldSet fields, int wall_history_size);
+  /// wall_tag_size: doubles per particle tagging the slots of walls that
+  /// find their contacts again by a tag (mesh walls: each contact's normal).
+  void configure(FieldSet fields, int wall_history_size, int wall_tag_size = 0);
 
   FieldSet fields() const { return fields_; }
   int wall_history_size() const { return wall_history_size_; }
+  int wall_tag_size() const { return wall_tag_size_; }
   /// Names of the fields that exist, core first (for `grains check`).
   std::vector<std::string> field_names() const;
 
@@ -110,6 +113,7 @@ class ParticleStore {
   std::vector<Vec3> omega, torque, inertia;
   std::vector<Quat> orientation;
   std::vector<double> wall_history;  // size() * wall_history_size()
+  std::vector<double> wall_tags;     // size() * wall_tag_size()
   std::vector<Vec3> angular_momentum, semi_axes;
   std::vector<std::array<double, 6>> form;
   std::vector<std::int64_t> body;  // id of the clump this ball belongs to, -1 for a free particle
@@ -170,6 +174,8 @@ class ParticleStore {
     if (wall_history_size_ > 0)
       fn(FieldInfo{"wall_history", "m (tangential), N m (rolling)", wall_history_size_, false, true}, &P::wall_history,
          [](Q) { return 0.0; });
+    if (wall_tag_size_ > 0)
+      fn(FieldInfo{"wall_contact_normal", "", wall_tag_size_, false, true}, &P::wall_tags, [](Q) { return 0.0; });
     if (fields_.has(Field::AngularMomentum)) fn(FieldInfo{"angular_momentum", "kg m^2/s"}, &P::angular_momentum, zero3);
     if (fields_.has(Field::SemiAxes)) fn(FieldInfo{"semi_axes", "m"}, &P::semi_axes, [](Q q) { return Vec3(q.r, q.r, q.r); });
     if (fields_.has(Field::ShapeForm))
@@ -188,6 +194,7 @@ class ParticleStore {
   }
   FieldSet fields_{};
   int wall_history_size_ = 0;
+  int wall_tag_size_ = 0;
   std::size_t n_owned_ = 0;
 };
 

@@ -49,8 +49,8 @@ struct CylinderWall : WallCommon {
   /// The surface widened by the skin; a non-spherical particle (radius = its
   /// bounding sphere) may touch it at a point up to its radius along the axis
   /// from its centre.
-  void near_list(const ParticleStore& p, std::size_t n, double skin, bool shapes,
-                 std::vector<std::uint32_t>& out) const {
+  void near_list(const ParticleStore& p, std::size_t n, double skin, bool shapes, std::vector<std::uint32_t>& out,
+                 NearItems&) const {
     auto s = surface;
     s.t_min -= skin;
     s.t_max += skin;
@@ -66,8 +66,9 @@ struct CylinderWall : WallCommon {
     }
   }
 
-  template <bool Shapes, class Held, class Emit>
-  GRAINS_INLINE void contacts(const ParticleStore& p, std::size_t i, Held&&, Emit&& emit) const {
+  template <bool Shapes, class Slots, class Emit>
+  GRAINS_INLINE void contacts(const ParticleStore& p, std::size_t i, std::span<const std::uint32_t>, Slots&&,
+                              Emit&& emit) const {
     contact::ContactGeometry g;
     if constexpr (Shapes) {
       if (p.shape[i] == kEllipsoid) {

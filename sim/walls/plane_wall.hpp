@@ -70,7 +70,7 @@ struct PlaneWall : WallCommon {
 
   /// The particles [0, n) within their radius + skin of the plane (or annulus).
   void near_list(const ParticleStore& p, std::size_t n, double skin, bool /*shapes*/,
-                 std::vector<std::uint32_t>& out) const {
+                 std::vector<std::uint32_t>& out, NearItems&) const {
     if (finite()) {  // touched from both sides and on its rims
       const auto a = annulus();
       for (std::size_t i = 0; i < n; ++i) {
@@ -85,8 +85,9 @@ struct PlaneWall : WallCommon {
       if (contact::plane_distance(p.x[i], q, m) < p.radius[i] + skin) out.push_back(static_cast<std::uint32_t>(i));
   }
 
-  template <bool Shapes, class Held, class Emit>
-  GRAINS_INLINE void contacts(const ParticleStore& p, std::size_t i, Held&& held, Emit&& emit) const {
+  template <bool Shapes, class Slots, class Emit>
+  GRAINS_INLINE void contacts(const ParticleStore& p, std::size_t i, std::span<const std::uint32_t>, Slots&& slots,
+                              Emit&& emit) const {
     contact::ContactGeometry g;
     if (!finite()) {
       if constexpr (Shapes) {
@@ -103,7 +104,7 @@ struct PlaneWall : WallCommon {
     }
     if constexpr (Shapes) {
       if (p.shape[i] == kEllipsoid) {
-        ellipsoid_annulus(p, i, held, emit);
+        ellipsoid_annulus(p, i, slots, emit);
         return;
       }
     }
@@ -173,13 +174,13 @@ struct PlaneWall : WallCommon {
   // own slot. A lone contact (face or rim), or a face contact beside a rim
   // one, continues the slot that holds history if only one does: it is the
   // contact of the previous step, moved (e.g. from the rim onto the face).
-  template <class Held, class Emit>
-  GRAINS_INLINE void ellipsoid_annulus(const ParticleStore& p, std::size_t i, Held&& held, Emit&& emit) const {
+  template <class Slots, class Emit>
+  GRAINS_INLINE void ellipsoid_annulus(const ParticleStore& p, std::size_t i, Slots& slots, Emit&& emit) const {
     const contact::AnnulusContacts a =
         contact::ellipsoid_annulus_contacts({p.x[i], p.semi_axes[i], p.orientation[i]}, annulus());
     int slot[2] = {a.slot[0], a.slot[1]};
     if (a.count == 1 || a.face[0]) {
-      const bool h0 = held(0), h1 = held(1);
+      const bool h0 = slots.held(0), h1 = slots.held(1);
       if (h0 != h1) {
         slot[0] = h0 ? 0 : 1;
         slot[1] = 1 - slot[0];

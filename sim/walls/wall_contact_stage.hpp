@@ -1,14 +1,19 @@
 #pragma once
 #include "contact/contact_geometry.hpp"
 // Particle-wall contacts of every wall kind through the same Law as particle
-// pairs: the wall is body j with infinite mass (m* = m_i), the wall's
-// velocity and no spin. One stage for all walls: each kind supplies its
-// contacts (wall_kind.hpp), this loop evaluates them over the wall's near
-// list, keeps the history per (particle, wall slot) in the particle's
-// wall-history field and clears the slots a particle no longer uses. With
+// pairs: the wall is body j with infinite mass (m* = m_i), the velocity of
+// its surface at the contact point and no spin. One stage for all walls:
+// each kind supplies its contacts (wall_kind.hpp), this loop evaluates them
+// over the wall's near list, keeps the history per (particle, wall slot) in
+// the particle's wall-history field (and, for tagged kinds, the contact's
+// normal in wall_tags) and clears the slots a particle no longer uses. With
 // Shapes = true (scenes with ellipsoids) the geometry is chosen per
-// particle: sphere or ellipsoid.
+// particle: sphere or ellipsoid. When the scene measures wall loads, each
+// wall's force and torque are summed (per thread, then in thread order).
 #include <algorithm>
+#include <array>
+
+#include <omp.h>
 
 #include "sim/laws/contact_law.hpp"
 #include "sim/scene/stage.hpp"
@@ -18,8 +23,10 @@ namespace grains::sim {
 
 template <class Law, bool Rotation = Law::needs_rotation>
 struct WallContact {
-  static GRAINS_INLINE void apply(ParticleStore& p, std::size_t i, const contact::ContactGeometry& g,
-                                  const Vec3& wall_velocity, const PairParams& pp, double dt, double* hist) {
+  /// Applies the contact to particle i; returns the force on it.
+  static GRAINS_INLINE Vec3 apply(ParticleStore& p, std::size_t i, const contact::ContactGeometry& g,
+                                  const Vec3& wall_velocity, const PairParams& pp, double dt, double* hist,
+                                  Vec3* rolling = nullptr) {
     Vec3 v_rel = p.v[i] - wall_velocity;
     Vec3 w_rel = Vec3::Zero();
     Vec3 ci;
@@ -30,8 +37,31 @@ struct WallContact {
     }
     const auto r = Law::evaluate(g, v_rel, w_rel, p.mass[i], pp, dt, hist);
     p.f[i] += r.force;
-    if constexpr (Rotation) p.torque[i] += ci.cross(r.force) + r.rolling_torque;
+    if constexpr (Rotation) {
+      p.torque[i] += ci.cross(r.force) + r.rolling_torque;
+      if (rolling) *rolling = r.rolling_torque;
+    }
+    return r.force;
   }
+};
+
+/// A particle's history slots of one wall, as a kind's contacts() sees them.
+template <int H, bool Tagged>
+struct WallSlots {
+  double* hist;  // H doubles per slot (null when H = 0)
+  double* tags;  // 3 doubles per slot (tagged kinds with history)
+  static constexpr bool keeps_history() { return H > 0; }
+  bool held(int k) const {
+    if constexpr (H == 0) {
+      (void)k;
+      return false;
+    } else if constexpr (Tagged) {
+      return tags[3 * k] != 0.0 || tags[3 * k + 1] != 0.0 || tags[3 * k + 2] != 0.0;
+    } else {
+      return std::any_of(hist + k * H, hist + (k + 1) * H, [](double v) { return v != 0.0; });
+    }
+  }
+  double* tag(int k) const { return tags + 3 * k; }
 };
 
 template <class Law, bool Shapes = false>
@@ -42,43 +72,86 @@ class WallStage final : public Stage {
   }
   Phase phase() const override { return Phase::Force; }
   void run(Scene& s) override {
-    s.walls.for_each([&](const auto& wall, std::size_t w) { run_wall(s, wall, s.neighbors.wall_near[w]); });
+    const bool loads = !s.wall_loads.empty();
+    s.walls.for_each([&](const auto& wall, std::size_t w) {
+      const auto& items = w < s.neighbors.wall_items.size() ? s.neighbors.wall_items[w] : no_items_;
+      if (loads)
+        run_wall<true>(s, wall, s.neighbors.wall_near[w], items, s.wall_loads[w]);
+      else
+        run_wall<false>(s, wall, s.neighbors.wall_near[w], items, s.wall_loads.empty() ? unused_ : s.wall_loads[w]);
+    });
   }
 
  private:
-  template <class K>
-  static void run_wall(Scene& s, const K& wall, const std::vector<std::uint32_t>& near) {
+  template <bool Loads, class K>
+  void run_wall(Scene& s, const K& wall, const std::vector<std::uint32_t>& near, const NearItems& items,
+                WallLoad& load) {
     ParticleStore& p = s.particles;
     constexpr int H = Law::history_size;
+    constexpr bool Tagged = K::tagged && H > 0;
     const int WH = p.wall_history_size();
+    const int WT = p.wall_tag_size();
     const int slots = wall.history_slots;
     const auto nn = static_cast<std::ptrdiff_t>(near.size());
+    const bool threads = s.deterministic && use_threads(nn, 256);
+    Vec3 point{0, 0, 0};
+    if constexpr (Loads) {
+      if constexpr (requires { wall.load_point(); })
+        point = wall.load_point();
+      else
+        point = wall.position();
+      partial_.assign(threads ? static_cast<std::size_t>(omp_get_max_threads()) : 1, WallLoad{});
+    }
     // Each particle appears once per wall: rows are independent.
-    parallel_for(s.deterministic && use_threads(nn, 256), nn, [&](std::ptrdiff_t m) {
+    parallel_for(threads, nn, [&](std::ptrdiff_t m) {
       const std::size_t i = near[static_cast<std::size_t>(m)];
       double* hist = H > 0 ? p.wall_history.data() + i * WH + wall.history_slot * H : nullptr;
-      auto held = [&](int k) {
-        if constexpr (H > 0) return std::any_of(hist + k * H, hist + (k + 1) * H, [](double v) { return v != 0.0; });
-        (void)k;
-        return false;
-      };
+      double* tags = Tagged ? p.wall_tags.data() + i * WT + wall.tag_offset : nullptr;
+      const WallSlots<H, Tagged> sl{hist, tags};
       unsigned used = 0;  // the slots a contact used this step
-      wall.template contacts<Shapes>(p, i, held, [&](const contact::ContactGeometry& g, int slot) {
-        used |= 1u << slot;
-        WallContact<Law, Law::needs_rotation || Shapes>::apply(p, i, g, wall.velocity,
-                                                              s.pairs(p.material[i], wall.material), s.clock.dt,
-                                                              H > 0 ? hist + slot * H : nullptr);
+      wall.template contacts<Shapes>(p, i, items.row(static_cast<std::size_t>(m)), sl,
+                                     [&](const contact::ContactGeometry& g, int slot) {
+        [[maybe_unused]] std::array<double, Tagged ? H : 1> spare;  // a contact beyond the slots: no history
+        double* h = nullptr;
+        if constexpr (H > 0) {
+          if (Tagged && slot < 0) {
+            spare.fill(0.0);
+            h = spare.data();
+          } else {
+            used |= 1u << slot;
+            h = hist + slot * H;
+          }
+        }
+        Vec3 rolling{0, 0, 0};
+        const Vec3 f = WallContact<Law, Law::needs_rotation || Shapes>::apply(
+            p, i, g, wall.surface_velocity(g.point), s.pairs(p.material[i], wall.material), s.clock.dt, h, &rolling);
+        if constexpr (Loads) {
+          WallLoad& l = partial_[threads ? static_cast<std::size_t>(omp_get_thread_num()) : 0];
+          l.force -= f;
+          l.torque -= (g.point - point).cross(f) + rolling;
+        }
       });
       if constexpr (H > 0) {
         if (slots == 1) {  // most walls: one fill of known size
           if (used == 0) std::fill_n(hist, H, 0.0);
         } else {
           for (int k = 0; k < slots; ++k)
-            if (!(used >> k & 1u)) std::fill_n(hist + k * H, H, 0.0);
+            if (!(used >> k & 1u)) {
+              std::fill_n(hist + k * H, H, 0.0);
+              if constexpr (Tagged) std::fill_n(tags + 3 * k, 3, 0.0);
+            }
         }
       }
     });
+    if constexpr (Loads) {
+      load = WallLoad{};
+      for (const auto& l : partial_) load.force += l.force, load.torque += l.torque;
+    }
   }
+
+  std::vector<WallLoad> partial_;
+  NearItems no_items_;
+  WallLoad unused_;
 };
 
 }  // namespace grains::sim

@@ -5,16 +5,22 @@
 //   summary(), keys()          its documentation and case-file keys, besides type, name, material, velocity
 //   from_keys(KeyReader&)      the wall from its keys (the parser reports errors with their location)
 //   slots(ellipsoids)          history slots per particle (contacts a grain can have with it at once)
-//   near_list(p, n, skin, shapes, out)
+//   near_list(p, n, skin, shapes, out, items)
 //                              the particles of [0, n) that may touch it before they move the skin
-//                              (bounding radius + skin; rebuilt with the neighbour list)
-//   contacts<Shapes>(p, i, held, emit)
+//                              (bounding radius + skin; rebuilt with the neighbour list), and for
+//                              each what the kind wants at hand (items: a mesh's near triangles)
+//   contacts<Shapes>(p, i, items, slots, emit)
 //                              emit(geometry, slot) for each contact of particle i (sphere, or
-//                              ellipsoid when Shapes), slot the history slot it continues (< 32);
-//                              held(k): slot k holds history
+//                              ellipsoid when Shapes), slot the history slot it continues (< 32;
+//                              -1: none free, no history); slots.held(k): slot k holds history,
+//                              slots.keeps_history(), slots.tag(k) (tagged kinds)
 //   touches(x, r), touches(ellipsoid)
 //                              any contact at all (insertion obstacles, `grains analyze`)
-//   translate(d), position()   prescribed motion and the checkpointed pose
+//   translate(d), position()   prescribed motion and the checkpointed pose (a kind with its own
+//                              motion has advance(dt) and motion_time, checkpointed too)
+//   surface_velocity(q), max_speed()
+//                              (WallCommon's: the constant velocity) for a kind whose surface
+//                              moves otherwise (rotation)
 //   cells(surface, centre, half)
 //                              its quads for the walls .vtp of each frame (infinite kinds sized by the
 //                              domain's centre and half diagonal)
@@ -23,6 +29,8 @@
 // ARKODE, the ordered gather, insertion obstacles, checkpoints, VTK output,
 // the case parser, `grains docs` and `grains analyze` iterate the registry.
 #include <array>
+#include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -36,18 +44,42 @@ using contact::Vec3;
 /// The part of a wall every kind has.
 struct WallCommon {
   std::string name;
+  std::string where;  // its place in the case file (file:line), for messages
   int material = 0;
   Vec3 velocity{0, 0, 0};  // prescribed, constant
   /// The wall's history slots in each particle's wall-history field: from
   /// history_slot on, history_slots of them (set by build_scene from slots()).
   int history_slot = 0;
   int history_slots = 1;
+  /// Kinds whose slots carry a tag (tagged = true: the contact's normal, 3
+  /// doubles per slot in ParticleStore::wall_tags) start at this offset there.
+  int tag_offset = 0;
+  static constexpr bool tagged = false;
+
+  /// Defaults a kind may replace: its surface's velocity at a point, a bound
+  /// on any of its points' speed.
+  Vec3 surface_velocity(const Vec3&) const { return velocity; }
+  double max_speed() const { return velocity.norm(); }
 };
 
-/// A wall's surface for output: quads (4 point indices) into `points`.
+/// A wall's surface for output: quads and triangles (point indices) into `points`.
 struct WallSurface {
   std::vector<Vec3> points;
   std::vector<std::array<int, 4>> quads;
+  std::vector<std::array<int, 3>> triangles;
+};
+
+/// What a kind's near list holds besides the particles, per listed particle
+/// (a mesh: the triangles near it): items[start[m], start[m + 1]) for the
+/// m-th particle of the list. Empty (start = {0}) for kinds without.
+struct NearItems {
+  std::vector<std::uint32_t> start{0};
+  std::vector<std::uint32_t> items;
+  std::span<const std::uint32_t> row(std::size_t m) const {
+    if (m + 1 >= start.size()) return {};
+    return {items.data() + start[m], items.data() + start[m + 1]};
+  }
+  bool operator==(const NearItems&) const = default;
 };
 
 }  // namespace grains::sim

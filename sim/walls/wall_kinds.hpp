@@ -5,10 +5,11 @@
 // cells and force accumulation.
 #include "sim/registry.hpp"
 #include "sim/walls/cylinder_wall.hpp"
+#include "sim/walls/mesh_wall.hpp"
 #include "sim/walls/plane_wall.hpp"
 
 namespace grains::sim {
 
-using WallKinds = TypeList<PlaneWall, CylinderWall>;
+using WallKinds = TypeList<PlaneWall, CylinderWall, MeshWall>;
 
 }  // namespace grains::sim

@@ -6,7 +6,7 @@ namespace grains::sim {
 
 double Walls::max_displacement(double t) const {
   double m = 0;
-  for_each([&](const auto& w, std::size_t) { m = std::max(m, w.velocity.norm() * t); });
+  for_each([&](const auto& w, std::size_t) { m = std::max(m, w.max_speed() * t); });
   return m;
 }
 
@@ -19,7 +19,12 @@ std::string Walls::describe() const {
 }
 
 void Walls::advance(double dt) {
-  for_each([&](auto& w, std::size_t) { w.translate(w.velocity * dt); });
+  for_each([&](auto& w, std::size_t) {
+    if constexpr (requires { w.advance(dt); })
+      w.advance(dt);
+    else
+      w.translate(w.velocity * dt);
+  });
 }
 
 }  // namespace grains::sim

@@ -1,0 +1,116 @@
+#pragma once
+// A triangle mesh as a wall surface: its topology (each edge's faces, each
+// vertex's faces and edges), a bounding-volume hierarchy over its triangles,
+// and the contacts of a sphere with it, one per physical contact.
+//
+// One contact per physical contact. A sphere over the edge shared by two
+// triangles is nearest to that edge in both; over a vertex shared by six
+// triangles, nearest to it in all six. The rule (the nearest point must be a
+// local minimum of the distance over the surface):
+//   - a triangle whose nearest point is inside its face gives a contact;
+//   - an edge gives one contact when every triangle that shares it is nearest
+//     at that edge (its nearest point is on the edge, or at the same point);
+//     none when any of them is nearest inside its face;
+//   - a vertex gives one contact when every triangle that shares it is
+//     nearest at that vertex; none when any is nearest inside its face or an
+//     edge through the vertex already gave the contact.
+// On a flat or smooth patch that is the one contact a plane would give,
+// continuous as a sphere rolls across edges and vertices; at a convex ridge
+// or corner, the contact with the edge or vertex; in a concave valley or
+// corner, one contact with each face. No angular tolerance is involved: only
+// the feature each triangle reports (contact/mesh/triangle_distance.hpp) and,
+// for ties, whether two nearest points coincide to 1e-12 of the radius.
+//
+// Two-sided by default: the normal points from the contact point to the
+// centre. One-sided: a face pushes along its outward (counter-clockwise)
+// normal even when the centre has passed behind it (up to a radius), and
+// edges and vertices only touch from in front of one of their faces.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "contact/contact_geometry.hpp"
+#include "contact/mesh/triangle_distance.hpp"
+
+namespace grains::contact {
+
+/// One contact of a sphere with a mesh surface (in the mesh's frame).
+struct MeshContact {
+  Vec3 point;       // nearest point of the surface
+  Vec3 normal;      // unit, from the surface towards the sphere's centre
+  double depth;     // r - distance (> 0)
+  double radius;    // R* for the Hertz law
+  int triangle;     // a triangle that holds the point
+  int feature;      // 0 face, 1 edge, 2 vertex
+};
+
+class MeshSurface {
+ public:
+  MeshSurface() = default;
+  /// Faces index vertices; degenerate faces must have been removed.
+  MeshSurface(std::vector<Vec3> vertices, std::vector<std::array<int, 3>> faces, bool one_sided);
+
+  std::size_t triangles() const { return faces_.size(); }
+  std::size_t edges() const { return edge_vertex_.size(); }
+  const std::vector<Vec3>& vertices() const { return vertices_; }
+  const std::vector<std::array<int, 3>>& faces() const { return faces_; }
+  const Vec3& face_normal(int t) const { return normal_[static_cast<std::size_t>(t)]; }
+  bool one_sided() const { return one_sided_; }
+  Vec3 bbox_min() const { return lo_; }
+  Vec3 bbox_max() const { return hi_; }
+  /// Edges used by one face (an open mesh's rim) and by more than two.
+  std::size_t boundary_edges() const { return boundary_edges_; }
+  std::size_t nonmanifold_edges() const { return nonmanifold_edges_; }
+  // Topology: edge k of face t runs from corner k to corner k + 1.
+  int face_edge(int t, int k) const { return face_edge_[static_cast<std::size_t>(t)][static_cast<std::size_t>(k)]; }
+  std::span<const int> edge_faces(int e) const { return csr(edge_face_start_, edge_face_, e); }
+  std::span<const int> vertex_faces(int v) const { return csr(vertex_face_start_, vertex_face_, v); }
+  std::span<const int> vertex_edges(int v) const { return csr(vertex_edge_start_, vertex_edge_, v); }
+  const std::array<int, 2>& edge_vertices(int e) const { return edge_vertex_[static_cast<std::size_t>(e)]; }
+  /// Bytes held (vertices, faces, topology, hierarchy).
+  std::size_t bytes() const;
+
+  /// Appends the triangles within `reach` of x (exact distance), in
+  /// ascending order; `visited` counts the hierarchy nodes looked at.
+  void near(const Vec3& x, double reach, std::vector<std::uint32_t>& out, std::size_t* visited = nullptr) const;
+  /// Distance from x to the nearest triangle (infinity when there is none within `limit`).
+  double distance(const Vec3& x, double limit) const;
+
+  /// The contacts of sphere (x, r) with the triangles `tris` (a superset of
+  /// those within r), one per physical contact, deepest first; at most `max`
+  /// written to out; returns how many there are (may exceed max).
+  int sphere_contacts(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out, int max) const;
+
+ private:
+  struct Node {
+    Vec3 lo, hi;
+    int first = 0, count = 0;  // a leaf's triangles: order_[first, first + count)
+    int left = -1, right = -1; // an inner node's children (count = 0)
+  };
+  int build(int begin, int end, const std::vector<Vec3>& centroid);
+  static std::span<const int> csr(const std::vector<int>& start, const std::vector<int>& items, int k) {
+    const auto b = static_cast<std::size_t>(start[static_cast<std::size_t>(k)]);
+    const auto e = static_cast<std::size_t>(start[static_cast<std::size_t>(k) + 1]);
+    return {items.data() + b, e - b};
+  }
+
+  std::vector<Vec3> vertices_;
+  std::vector<std::array<int, 3>> faces_;
+  std::vector<Vec3> normal_;                     // unit, counter-clockwise
+  std::vector<std::array<int, 3>> face_edge_;    // edge k runs from corner k to corner k + 1
+  std::vector<std::array<int, 2>> edge_vertex_;  // endpoints
+  std::vector<int> edge_face_start_, edge_face_;       // faces of each edge (CSR)
+  std::vector<int> vertex_face_start_, vertex_face_;   // faces of each vertex (CSR)
+  std::vector<int> vertex_edge_start_, vertex_edge_;   // edges of each vertex (CSR)
+  std::vector<Node> nodes_;
+  std::vector<int> order_;  // triangles in leaf order
+  Vec3 lo_{0, 0, 0}, hi_{0, 0, 0};
+  std::size_t boundary_edges_ = 0, nonmanifold_edges_ = 0;
+  bool one_sided_ = false;
+};
+
+}  // namespace grains::contact
