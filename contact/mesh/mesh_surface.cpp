@@ -202,17 +202,15 @@ int MeshSurface::sphere_contacts(const Vec3& x, double r, std::span<const std::u
   auto in_front = [&](int t, const Vec3& q) { return normal_[static_cast<std::size_t>(t)].dot(x - q) >= 0; };
 
   // Faces.
+  // Faces: the plane's contact, as a plane wall computes it (normal, the
+  // centre's distance, its foot), with the normal towards the centre unless
+  // one-sided.
   for (const auto& c : cand) {
     if (c.f != TriangleFeature::Face) continue;
-    if (one_sided_) {
-      const Vec3& n = normal_[static_cast<std::size_t>(c.t)];
-      const double s = n.dot(x - c.q);
-      found.push_back({c.q, n, r - s, r, c.t, 0});
-    } else {  // the plane's normal, towards the centre (as a plane wall's)
-      const Vec3& n = normal_[static_cast<std::size_t>(c.t)];
-      const double s = n.dot(x - c.q);
-      found.push_back({c.q, s >= 0 ? n : Vec3(-n), r - std::abs(s), r, c.t, 0});
-    }
+    const Vec3& n0 = normal_[static_cast<std::size_t>(c.t)];
+    const Vec3 n = one_sided_ || n0.dot(x - c.q) >= 0 ? n0 : Vec3(-n0);
+    const double s = n.dot(x - vertices_[faces_[static_cast<std::size_t>(c.t)][0]]);
+    found.push_back({Vec3(x - n * s), n, r - s, r, c.t, 0});
   }
   // Edges: one contact per edge, when it is the local minimum for all its faces.
   done_edges.clear();

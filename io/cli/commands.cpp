@@ -7,6 +7,7 @@
 #include "io/cli/clump_command.hpp"
 #include "io/cli/pw85_command.hpp"
 #include "io/cli/analyze_command.hpp"
+#include "io/cli/repose_command.hpp"
 
 namespace grains::io {
 
@@ -46,6 +47,7 @@ int run_tool_command(const std::string& cmd, const std::vector<std::string>& arg
   if (cmd == "clump") return run_clump_command(args, std::cout, std::cerr);
   if (cmd == "analyze") return run_analyze_command(args, std::cout, std::cerr);
   if (cmd == "render") return run_render_command(args, std::cout, std::cerr);
+  if (cmd == "repose") return run_repose_command(args, std::cout, std::cerr);
   return -1;
 }
 

@@ -37,6 +37,8 @@ const char* kUsage =
     "      packing fraction, coordination, RDF, order, contact forces and profiles of a frame (grains analyze -h)\n"
     "  grains render OUTDIR [--frame N] [--color FIELD] -o snapshot.png\n"
     "      an offscreen picture of a frame (grains render -h)\n"
+    "  grains repose OUTDIR [--axis x|y] [--centre X,Y,Z] [--from T] [--to T] [-o DIR]\n"
+    "      dynamic angle of repose of the free surface in a rotating drum, over the frames (grains repose -h)\n"
     "  grains pw85 [FILE]\n"
     "      Perram-Wertheim contact function of ellipsoid pairs from CSV (stdin without FILE):\n"
     "      columns q1_0..q1_5,q2_0..q2_5,r_0,r_1,r_2 in, the same plus mu2,lambda out\n"

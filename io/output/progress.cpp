@@ -60,7 +60,7 @@ BlowUpCheck::BlowUpCheck(const sim::Scene& s, double rayleigh_time, std::int64_t
   for (std::size_t i = 0; i < s.particles.n_owned(); ++i) v0 = std::max(v0, s.particles.v[i].norm());
   v0 = sim::Comm::world().max(v0);
   const double vfall = std::sqrt(2 * s.gravity.norm() * ext.norm());
-  vmax_ = 100 * (v0 + vfall + s.walls.max_displacement(1.0) + extra_speed) + 1e-6;
+  vmax_ = 100 * (v0 + vfall + s.walls.max_speed() + extra_speed) + 1e-6;
 }
 
 void BlowUpCheck::run(sim::Scene& s) {

@@ -636,7 +636,7 @@ void ErkDriver::drive(Scene& s, Pipeline& p) {
     t_ = s.clock.time;
     walls_ref_ = s.walls;
     walls_t0_ = t_;
-    walls_move_ = s.walls.max_displacement(1.0) > 0;
+    walls_move_ = s.walls.max_speed() > 0;
     ready_ = true;
   }
   const double t_end = static_cast<double>(s.clock.step + 1) * dt_;  // as Pipeline::step sets the clock

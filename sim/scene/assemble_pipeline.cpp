@@ -123,7 +123,7 @@ void add_arkode(Pipeline& p, const Scene& s, const SceneConfig& c, const SceneNe
   // nothing moves takes the speed of a radius per Rayleigh time.
   double v0 = 0;
   for (std::size_t i = 0; i < s.particles.n_owned(); ++i) v0 = std::max(v0, s.particles.v[i].norm());
-  scales.speed = v0 + std::sqrt(2 * s.gravity.norm() * (s.domain.hi - s.domain.lo).norm()) + s.walls.max_displacement(1.0);
+  scales.speed = v0 + std::sqrt(2 * s.gravity.norm() * (s.domain.hi - s.domain.lo).norm()) + s.walls.max_speed();
   if (!(scales.speed > 0)) {
     const double tr = rayleigh_time(c);
     scales.speed = std::isfinite(tr) && tr > 0 ? scales.length / tr : 1.0;

@@ -104,7 +104,7 @@ SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs) {
   n.rotation = n.tangential || n.rolling || n.ellipsoids;
   n.gravity = c.gravity.squaredNorm() > 0;
   n.walls = c.walls.count() > 0;
-  n.moving_walls = c.walls.max_displacement(1.0) > 0;
+  n.moving_walls = c.walls.max_speed() > 0;
   n.history_size = n.tangential_history + n.rolling_history;
   if (c.integrator == Integrator::Arkode && n.history_size > 0) {
     n.history_in_state = true;

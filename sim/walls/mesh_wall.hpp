@@ -145,6 +145,18 @@ struct MeshWall : WallCommon {
   void translate(const Vec3& d) { T += d, offset += d, moving = true; }
   Vec3& position() { return offset; }
   const Vec3& position() const { return offset; }
+  /// A bound on how far any point of the surface moved in the last
+  /// `elapsed` of its motion clock (the neighbour list's trigger): the
+  /// motion's speed integrated over that window, zero before its start.
+  double max_displacement(double elapsed) const {
+    const double t0 = motion_time - elapsed;
+    const double ramped = ramp_integral(motion_time) - ramp_integral(t0);  // <= elapsed
+    double d = (velocity.norm() + std::abs(angular_velocity) * reach) * ramped;
+    if (vibration_frequency > 0 && motion_time > start)
+      d += std::min(2.0, (2 * M_PI * vibration_frequency + (ramp > 0 ? 1 / ramp : 0)) * elapsed) *
+           vibration_amplitude.norm();
+    return d;
+  }
   double max_speed() const {
     const double vib = vibration_amplitude.norm() * (2 * M_PI * vibration_frequency + (ramp > 0 ? 1 / ramp : 0));
     return velocity.norm() + vib + std::abs(angular_velocity) * reach;

@@ -6,7 +6,18 @@ namespace grains::sim {
 
 double Walls::max_displacement(double t) const {
   double m = 0;
-  for_each([&](const auto& w, std::size_t) { m = std::max(m, w.max_speed() * t); });
+  for_each([&](const auto& w, std::size_t) {
+    if constexpr (requires { w.max_displacement(t); })
+      m = std::max(m, w.max_displacement(t));  // a kind that knows its motion's history
+    else
+      m = std::max(m, w.max_speed() * t);
+  });
+  return m;
+}
+
+double Walls::max_speed() const {
+  double m = 0;
+  for_each([&](const auto& w, std::size_t) { m = std::max(m, w.max_speed()); });
   return m;
 }
 

@@ -54,8 +54,10 @@ struct Walls {
   }
   /// "2 plane(s), 1 cylinder(s)": the count of every registered kind.
   std::string describe() const;
-  /// Largest distance any wall has moved in time t.
+  /// Largest distance any wall's surface has moved in the last time t.
   double max_displacement(double t) const;
+  /// A bound on the speed of any wall's surface at any time (0: no wall moves).
+  double max_speed() const;
   void advance(double dt);
 
  private:

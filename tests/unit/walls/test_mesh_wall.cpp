@@ -469,3 +469,45 @@ TEST(MeshWallCase, BadInputGetsLocatedErrors) {
 
 }  // namespace
 }  // namespace grains::test
+
+#include "io/checkpoint/checkpoint.hpp"
+#include "tests/unit/checkpoint/checkpoint_scene.hpp"
+
+namespace grains::test {
+namespace {
+
+TEST(MeshWall, RotatingDrumContinuesBitwiseFromItsCheckpoints) {
+  TempDir tmp("mesh_drum");
+  const fs::path off = tmp.path / "drum.off";
+  write_off(off, drum(Vec3(0, 0, 0), 0.01, 0.006, 48, 3));
+  // Checkpoints during the ramp (step 2000, t = 0.02 s) and at full speed (4000).
+  const std::string text =
+      drum_case(off, ", axis: [0, 1, 0], angular_velocity: 20, start: 0.01, ramp: 0.02", 0.06,
+                "output: {every: 0.02, progress: false}\ncheckpoint: {every_steps: 2000, keep: 10}\n");
+  auto full = make(text);
+  io::RunOptions o;
+  o.quiet = true;
+  o.out_dir = tmp.path / "full";
+  io::run(full, o);
+  for (const std::int64_t at : {2000, 4000}) {
+    auto part = make(text);
+    io::RunOptions p = o;
+    p.out_dir = tmp.path / ("part" + std::to_string(at));
+    p.restart = tmp.path / "full" / "checkpoints" / io::checkpoint_name(at);
+    io::run(part, p);
+    expect_same_state(full.scene, part.scene);
+    const auto& a = full.scene.walls.of<sim::MeshWall>()[0];
+    const auto& b = part.scene.walls.of<sim::MeshWall>()[0];
+    EXPECT_EQ(std::memcmp(&a.motion_time, &b.motion_time, sizeof(double)), 0);
+    EXPECT_TRUE(a.R == b.R && a.T == b.T);
+    EXPECT_EQ(full.scene.neighbors.wall_items, part.scene.neighbors.wall_items);
+  }
+  // A mesh with another triangle count than the checkpoint's is refused.
+  write_off(off, drum(Vec3(0, 0, 0), 0.01, 0.006, 40, 3));
+  auto other = make(text);
+  EXPECT_THROW(io::read_checkpoint(tmp.path / "full" / "checkpoints" / io::checkpoint_name(2000), other.scene),
+               io::CheckpointError);
+}
+
+}  // namespace
+}  // namespace grains::test
