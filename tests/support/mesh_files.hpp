@@ -101,6 +101,28 @@ inline Tri drum(const Eigen::Vector3d& centre, double r, double length, int segm
   return m;
 }
 
+/// An open conical hopper about the z axis (cases/hopper_discharge/make_hopper.py):
+/// the cone from the orifice (radius r0 at z = 0) to radius R at half-angle
+/// theta from the vertical (90 degrees: a flat bottom), then a bin of
+/// height H; `segments` around.
+inline Tri hopper(double theta_deg, double r0, double R, double H, int segments) {
+  const double hc = theta_deg >= 90 ? 0.0 : (R - r0) / std::tan(theta_deg * M_PI / 180);
+  const double rr[4] = {r0, R, R, R}, zz[4] = {0, hc, hc + H / 2, hc + H};
+  Tri m;
+  for (int j = 0; j < 4; ++j)
+    for (int k = 0; k < segments; ++k) {
+      const double t = 2 * M_PI * k / segments;
+      m.v.emplace_back(rr[j] * std::cos(t), rr[j] * std::sin(t), zz[j]);
+    }
+  auto id = [&](int k, int j) { return j * segments + (k % segments); };
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < segments; ++k) {
+      m.f.push_back({id(k, j), id(k + 1, j + 1), id(k + 1, j)});
+      m.f.push_back({id(k, j), id(k, j + 1), id(k + 1, j + 1)});
+    }
+  return m;
+}
+
 inline void write_off(const std::filesystem::path& path, const Tri& m) {
   std::ofstream o(path);
   o.precision(17);

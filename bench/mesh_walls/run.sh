@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# Mesh walls against plane walls on the same scene: cases/pour_spheres
+# (10,000 spheres poured into a 20 d x 20 d box) with its box as
+#   planes  the case's five plane walls
+#   mesh10  one mesh wall of 10 triangles (the floor and four sides, two each)
+#   mesh100k the same box as 100,920 triangles (the floor a 58 x 58 grid of
+#           two-triangle cells, each side 58 x 203)
+# run alternately (ROUNDS times each, serial). For each run: the wall time,
+# the seconds of the wall stage (force.walls) and of the neighbour stage
+# (which builds the walls' near lists), and the wall contacts of the last
+# frame (grains analyze over the whole box). The cost per wall contact of a
+# mesh wall against a plane wall is the ratio of the wall stages: the three
+# runs pour the same particles (their contacts agree in number to a few per
+# cent: printed). The 100k-triangle box shows what the mesh's size costs.
+#   bash bench/mesh_walls/run.sh      (BUILD: grains build dir, default build; END, ROUNDS, WORK)
+set -euo pipefail
+HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+ROOT="$(cd "$HERE/../.." && pwd)"
+BUILD="${BUILD:-$ROOT/build}"
+GRAINS="${GRAINS:-$BUILD/grains}"
+WORK="${WORK:-/tmp/grains-bench-mesh-walls}"
+END="${END:-0.34616}"
+ROUNDS="${ROUNDS:-2}"
+CASE="$ROOT/cases/pour_spheres/case.yaml"
+export OMP_NUM_THREADS=1
+rm -rf "$WORK" && mkdir -p "$WORK"
+echo "== $(date -u +%FT%TZ) $(uname -n), $(getconf _NPROCESSORS_ONLN) cores; load before: $(uptime)"
+echo "== grains: $("$GRAINS" --version 2>&1 | head -1) ($GRAINS)"
+
+python3 - "$WORK" <<'PY'
+import sys
+work = sys.argv[1]
+def grid(o, u, w, nu, nw, V, F):
+    base = len(V)
+    for j in range(nw + 1):
+        for i in range(nu + 1):
+            V.append(tuple(o[k] + u[k] * i / nu + w[k] * j / nw for k in range(3)))
+    idx = lambda i, j: base + j * (nu + 1) + i
+    for j in range(nw):
+        for i in range(nu):
+            a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
+            F.extend([(a, b, c), (a, c, d)] if (i + j) % 2 == 0 else [(a, b, d), (b, c, d)])
+def box(n_side, n_up, path):
+    V, F = [], []
+    X, Y, Z = (0.02, 0, 0), (0, 0.02, 0), (0, 0, 0.07)
+    grid((0, 0, 0), X, Y, n_side, n_side, V, F)          # floor
+    grid((0, 0, 0), Z, X, n_up, n_side, V, F)            # y = 0
+    grid((0, 0.02, 0), X, Z, n_side, n_up, V, F)         # y = 0.02
+    grid((0, 0, 0), Y, Z, n_side, n_up, V, F)            # x = 0
+    grid((0.02, 0, 0), Z, Y, n_up, n_side, V, F)         # x = 0.02
+    # weld the shared box edges
+    key = {}
+    remap = []
+    W = []
+    for v in V:
+        k = tuple(round(c, 12) for c in v)
+        if k not in key:
+            key[k] = len(W); W.append(v)
+        remap.append(key[k])
+    with open(path, "w") as f:
+        f.write("OFF\n%d %d 0\n" % (len(W), len(F)))
+        for v in W: f.write("%.17g %.17g %.17g\n" % v)
+        for t in F: f.write("3 %d %d %d\n" % tuple(remap[i] for i in t))
+    print("%s: %d triangles" % (path, len(F)))
+box(1, 1, work + "/box10.off")
+box(58, 203, work + "/box100k.off")
+PY
+
+run() {  # name, extra --set...
+  local name=$1 r=$2; shift 2
+  local out="$WORK/$name-$r"
+  "$GRAINS" run "$CASE" -o "$out" -q --set time.end=$END --set output.every=$END "$@"
+  "$GRAINS" analyze "$out" --no-plots --region -1,-1,-1,1,1,1 -o "$out/analysis" > /dev/null 2>&1 || true
+  python3 - "$out" "$name" <<'PY'
+import json, sys
+out, name = sys.argv[1], sys.argv[2]
+s = json.load(open(out + "/summary.json"))
+walls = sum(v for k, v in s["stage_seconds"].items() if "force.walls" in k)
+neigh = sum(v for k, v in s["stage_seconds"].items() if k.startswith("neighbor"))
+try:
+    wc = json.load(open(out + "/analysis/analysis.json"))["coordination"]["wall_contacts_total"]
+except Exception:
+    wc = -1
+print("%-9s wall %7.2f s  walls stage %6.3f s  neighbour stage %6.3f s  wall contacts (last frame) %5d  lost %d" %
+      (name, s["wall_time_s"], walls, neigh, wc, s["lost_particles"]))
+PY
+}
+for r in $(seq 1 "$ROUNDS"); do
+  run planes $r
+  run mesh10 $r "--set" "walls=[{type: mesh, name: box, file: $WORK/box10.off, material: grain}]"
+  run mesh100k $r "--set" "walls=[{type: mesh, name: box, file: $WORK/box100k.off, material: grain}]"
+done
+echo "== load after: $(uptime)"
