@@ -205,7 +205,7 @@ int ellipsoid_mesh_contacts(const MeshSurface& mesh, const Ellipsoid& body, std:
     }
     if (ok) found.push_back(c.c);
   }
-  std::stable_sort(found.begin(), found.end(), [](const MeshContact& a, const MeshContact& b) { return a.depth > b.depth; });
+  sort_by_depth(found);
   const int n = static_cast<int>(found.size());
   std::copy_n(found.begin(), std::min(n, max), out);
   return n;

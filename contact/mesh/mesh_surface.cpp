@@ -28,7 +28,7 @@ double box_distance2(const Vec3& x, const Vec3& lo, const Vec3& hi) {
   return d2;
 }
 
-constexpr int kLeaf = 4;
+constexpr int kLeaf = 2;
 
 struct Candidate {
   int t;
@@ -38,6 +38,11 @@ struct Candidate {
 };
 
 }  // namespace
+
+void sort_by_depth(std::vector<MeshContact>& c) {
+  for (std::size_t i = 1; i < c.size(); ++i)  // insertion sort, stable: a few contacts, no allocation
+    for (std::size_t j = i; j > 0 && c[j].depth > c[j - 1].depth; --j) std::swap(c[j], c[j - 1]);
+}
 
 MeshSurface::MeshSurface(std::vector<Vec3> vertices, std::vector<std::array<int, 3>> faces, bool one_sided)
     : vertices_(std::move(vertices)), faces_(std::move(faces)), one_sided_(one_sided) {
@@ -146,6 +151,8 @@ void MeshSurface::near(const Vec3& x, double reach, std::vector<std::uint32_t>& 
       for (int k = nd.first; k < nd.first + nd.count; ++k) {
         const int t = order_[static_cast<std::size_t>(k)];
         const auto& f = faces_[static_cast<std::size_t>(t)];
+        const double h = normal_[static_cast<std::size_t>(t)].dot(x - vertices_[f[0]]);
+        if (h * h >= r2) continue;  // beyond reach of its plane
         const TrianglePoint tp = closest_point_on_triangle(x, vertices_[f[0]], vertices_[f[1]], vertices_[f[2]]);
         if ((x - tp.point).squaredNorm() < r2) out.push_back(static_cast<std::uint32_t>(t));
       }
@@ -172,19 +179,34 @@ double MeshSurface::distance(const Vec3& x, double limit) const {
 
 int MeshSurface::sphere_contacts(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out,
                                  int max) const {
-  thread_local std::vector<Candidate> cand;
-  thread_local std::vector<MeshContact> found;
-  thread_local std::vector<int> done_edges, done_vertices, accepted_edges;
+  struct Scratch {
+    std::vector<Candidate> cand;
+    std::vector<MeshContact> found;
+    std::vector<int> done_edges, done_vertices, accepted_edges;
+  };
+  thread_local Scratch scratch;
+  auto& [cand, found, done_edges, done_vertices, accepted_edges] = scratch;
   cand.clear();
   const double r2 = r * r;
   for (const auto t : tris) {
     const auto& f = faces_[t];
     const Vec3& a = vertices_[f[0]];
+    const double h = normal_[t].dot(x - a);
+    if (h * h >= r2) continue;  // its plane is beyond the radius
     const TrianglePoint tp = closest_point_on_triangle(x, a, vertices_[f[1]], vertices_[f[2]]);
     const double d2 = (x - tp.point).squaredNorm();
     if (d2 < r2) cand.push_back({static_cast<int>(t), tp.feature, tp.point, d2});
   }
   if (cand.empty()) return 0;
+  // The common case: one triangle touched, inside its face (as below).
+  if (cand.size() == 1 && cand[0].f == TriangleFeature::Face && max > 0) {
+    const auto t = static_cast<std::size_t>(cand[0].t);
+    const Vec3& n0 = normal_[t];
+    const Vec3 n = one_sided_ || n0.dot(x - cand[0].q) >= 0 ? n0 : Vec3(-n0);
+    const double s = n.dot(x - vertices_[faces_[t][0]]);
+    out[0] = {Vec3(x - n * s), n, r - s, r, cand[0].t, 0};
+    return 1;
+  }
   found.clear();
   // The candidate of triangle t (tris ascending, so cand is too), or null.
   auto of = [&](int t) -> const Candidate* {
@@ -260,7 +282,7 @@ int MeshSurface::sphere_contacts(const Vec3& x, double r, std::span<const std::u
     if (!ok || !front) continue;
     found.push_back({c.q, towards(c), r - std::sqrt(c.d2), r, c.t, 2});
   }
-  std::stable_sort(found.begin(), found.end(), [](const MeshContact& a, const MeshContact& b) { return a.depth > b.depth; });
+  sort_by_depth(found);
   const int n = static_cast<int>(found.size());
   std::copy_n(found.begin(), std::min(n, max), out);
   return n;

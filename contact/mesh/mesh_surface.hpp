@@ -48,6 +48,9 @@ struct MeshContact {
   int feature;      // 0 face, 1 edge, 2 vertex
 };
 
+/// Contacts deepest first, in place (stable; no allocation).
+void sort_by_depth(std::vector<MeshContact>& c);
+
 class MeshSurface {
  public:
   MeshSurface() = default;

@@ -137,8 +137,11 @@ class WallStage final : public Stage {
         } else {
           for (int k = 0; k < slots; ++k)
             if (!(used >> k & 1u)) {
+              if constexpr (Tagged) {  // a free slot has no tag: only those just left are cleared
+                if (!sl.held(k)) continue;
+                std::fill_n(tags + 3 * k, 3, 0.0);
+              }
               std::fill_n(hist + k * H, H, 0.0);
-              if constexpr (Tagged) std::fill_n(tags + 3 * k, 3, 0.0);
             }
         }
       }
