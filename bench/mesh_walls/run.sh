@@ -4,11 +4,14 @@
 #   planes  the case's five plane walls
 #   mesh10  one mesh wall of 10 triangles (the floor and four sides, two each)
 #   mesh100k the same box as 100,920 triangles (the floor a 58 x 58 grid of
-#           two-triangle cells, each side 58 x 203)
+#           two-triangle cells, each side 58 x 203): every triangle near grains
+#   far100k  the 10-triangle box and, in the same mesh, a plate of 100,352
+#           triangles beside it where no grain goes (the domain widened to
+#           hold it): what a large mesh costs where grains are not
 # run alternately (ROUNDS times each, serial). For each run: the wall time,
 # the seconds of the wall stage (force.walls) and of the neighbour stage
 # (which builds the walls' near lists), and the wall contacts of the last
-# frame (grains analyze over the whole box). The cost per wall contact of a
+# frame (grains analyze over the whole domain). The cost per wall contact of a
 # mesh wall against a plane wall is the ratio of the wall stages: the three
 # runs pour the same particles (their contacts agree in number to a few per
 # cent: printed). The 100k-triangle box shows what the mesh's size costs.
@@ -64,6 +67,18 @@ def box(n_side, n_up, path):
     print("%s: %d triangles" % (path, len(F)))
 box(1, 1, work + "/box10.off")
 box(58, 203, work + "/box100k.off")
+# The 10-triangle box and, beside it (x from 0.025 to 0.055 m, where no
+# particle goes), a plate of 100,352 triangles: one mesh of 100,362.
+V, F = [], []
+X, Y, Z = (0.02, 0, 0), (0, 0.02, 0), (0, 0, 0.07)
+for o, u, w in [((0, 0, 0), X, Y), ((0, 0, 0), Z, X), ((0, 0.02, 0), X, Z), ((0, 0, 0), Y, Z), ((0.02, 0, 0), Z, Y)]:
+    grid(o, u, w, 1, 1, V, F)
+grid((0.025, 0, 0.01), (0.03, 0, 0), (0, 0.02, 0), 224, 224, V, F)
+with open(work + "/box10_far100k.off", "w") as f:
+    f.write("OFF\n%d %d 0\n" % (len(V), len(F)))
+    for v in V: f.write("%.17g %.17g %.17g\n" % v)
+    for t in F: f.write("3 %d %d %d\n" % t)
+print("%s: %d triangles" % (work + "/box10_far100k.off", len(F)))
 PY
 
 run() {  # name, extra --set...
@@ -89,5 +104,7 @@ for r in $(seq 1 "$ROUNDS"); do
   run planes $r
   run mesh10 $r "--set" "walls=[{type: mesh, name: box, file: $WORK/box10.off, material: grain}]"
   run mesh100k $r "--set" "walls=[{type: mesh, name: box, file: $WORK/box100k.off, material: grain}]"
+  run far100k $r --set "domain.max=[0.056,0.021,0.071]" \
+    "--set" "walls=[{type: mesh, name: box, file: $WORK/box10_far100k.off, material: grain}]"
 done
 echo "== load after: $(uptime)"

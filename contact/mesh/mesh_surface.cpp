@@ -177,8 +177,8 @@ double MeshSurface::distance(const Vec3& x, double limit) const {
   return best;
 }
 
-int MeshSurface::sphere_contacts(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out,
-                                 int max) const {
+int MeshSurface::resolve_sphere(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out,
+                                int max) const {
   struct Scratch {
     std::vector<Candidate> cand;
     std::vector<MeshContact> found;
@@ -198,15 +198,6 @@ int MeshSurface::sphere_contacts(const Vec3& x, double r, std::span<const std::u
     if (d2 < r2) cand.push_back({static_cast<int>(t), tp.feature, tp.point, d2});
   }
   if (cand.empty()) return 0;
-  // The common case: one triangle touched, inside its face (as below).
-  if (cand.size() == 1 && cand[0].f == TriangleFeature::Face && max > 0) {
-    const auto t = static_cast<std::size_t>(cand[0].t);
-    const Vec3& n0 = normal_[t];
-    const Vec3 n = one_sided_ || n0.dot(x - cand[0].q) >= 0 ? n0 : Vec3(-n0);
-    const double s = n.dot(x - vertices_[faces_[t][0]]);
-    out[0] = {Vec3(x - n * s), n, r - s, r, cand[0].t, 0};
-    return 1;
-  }
   found.clear();
   // The candidate of triangle t (tris ascending, so cand is too), or null.
   auto of = [&](int t) -> const Candidate* {
@@ -229,10 +220,8 @@ int MeshSurface::sphere_contacts(const Vec3& x, double r, std::span<const std::u
   // one-sided.
   for (const auto& c : cand) {
     if (c.f != TriangleFeature::Face) continue;
-    const Vec3& n0 = normal_[static_cast<std::size_t>(c.t)];
-    const Vec3 n = one_sided_ || n0.dot(x - c.q) >= 0 ? n0 : Vec3(-n0);
-    const double s = n.dot(x - vertices_[faces_[static_cast<std::size_t>(c.t)][0]]);
-    found.push_back({Vec3(x - n * s), n, r - s, r, c.t, 0});
+    found.emplace_back();
+    face_contact(x, r, c.t, c.q, found.back());
   }
   // Edges: one contact per edge, when it is the local minimum for all its faces.
   done_edges.clear();

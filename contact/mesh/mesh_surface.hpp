@@ -86,7 +86,39 @@ class MeshSurface {
   /// The contacts of sphere (x, r) with the triangles `tris` (a superset of
   /// those within r), one per physical contact, deepest first; at most `max`
   /// written to out; returns how many there are (may exceed max).
-  int sphere_contacts(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out, int max) const;
+  /// The common case (no other triangle within r, or none at all) is
+  /// settled here, inline; the rest in resolve_sphere.
+  GRAINS_INLINE int sphere_contacts(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out,
+                                    int max) const {
+    const double r2 = r * r;
+    int hit = -1;
+    TrianglePoint first{};
+    for (const auto t : tris) {
+      const auto& f = faces_[t];
+      const Vec3& a = vertices_[f[0]];
+      const double h = normal_[t].dot(x - a);
+      if (h * h >= r2) continue;  // its plane is beyond the radius
+      const TrianglePoint tp = closest_point_on_triangle(x, a, vertices_[f[1]], vertices_[f[2]]);
+      if ((x - tp.point).squaredNorm() >= r2) continue;
+      if (hit >= 0) return resolve_sphere(x, r, tris, out, max);  // several: the full rule
+      hit = static_cast<int>(t);
+      first = tp;
+    }
+    if (hit < 0) return 0;
+    if (first.feature != TriangleFeature::Face || max < 1) return resolve_sphere(x, r, tris, out, max);
+    face_contact(x, r, hit, first.point, out[0]);
+    return 1;
+  }
+  /// The contact of sphere (x, r) with the face of triangle t (q its nearest
+  /// point there): the plane's, as a plane wall computes it (normal towards
+  /// the centre unless one-sided, the centre's distance, its foot).
+  GRAINS_INLINE void face_contact(const Vec3& x, double r, int t, const Vec3& q, MeshContact& out) const {
+    const auto k = static_cast<std::size_t>(t);
+    const Vec3& n0 = normal_[k];
+    const Vec3 n = one_sided_ || n0.dot(x - q) >= 0 ? n0 : Vec3(-n0);
+    const double s = n.dot(x - vertices_[faces_[k][0]]);
+    out = {Vec3(x - n * s), n, r - s, r, t, 0};
+  }
 
  private:
   struct Node {
@@ -95,6 +127,7 @@ class MeshSurface {
     int left = -1, right = -1; // an inner node's children (count = 0)
   };
   int build(int begin, int end, const std::vector<Vec3>& centroid);
+  int resolve_sphere(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out, int max) const;
   static std::span<const int> csr(const std::vector<int>& start, const std::vector<int>& items, int k) {
     const auto b = static_cast<std::size_t>(start[static_cast<std::size_t>(k)]);
     const auto e = static_cast<std::size_t>(start[static_cast<std::size_t>(k) + 1]);

@@ -1,4 +1,5 @@
 #include "io/cli/analyze_command.hpp"
+#include "io/cli/arguments.hpp"
 
 #include <cstdlib>
 #include <exception>
@@ -38,36 +39,12 @@ const char* kRenderUsage =
     "  --color  point field: radius (default), velocity, force, coordination, material, id, angular_velocity,\n"
     "           or one component, e.g. velocity:z\n";
 
-bool parse_number(const std::string& s, double& v) {
-  try {
-    std::size_t used = 0;
-    v = std::stod(s, &used);
-    return used == s.size();
-  } catch (const std::exception&) {
-    return false;
-  }
-}
-
-bool parse_long(const std::string& s, long& v) {
-  try {
-    std::size_t used = 0;
-    v = std::stol(s, &used);
-    return used == s.size();
-  } catch (const std::exception&) {
-    return false;
-  }
-}
+using cli_args::parse_long;
+using cli_args::parse_number;
 
 bool parse_region(const std::string& s, pp::Box& b) {
   std::vector<double> v;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    double x;
-    if (!parse_number(item, x)) return false;
-    v.push_back(x);
-  }
-  if (v.size() != 6) return false;
+  if (!cli_args::parse_numbers(s, 6, v)) return false;
   b.lo = pp::Vec3(v[0], v[1], v[2]);
   b.hi = pp::Vec3(v[3], v[4], v[5]);
   return (b.hi.array() > b.lo.array()).all();

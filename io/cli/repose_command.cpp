@@ -1,4 +1,5 @@
 #include "io/cli/repose_command.hpp"
+#include "io/cli/arguments.hpp"
 
 #include <cmath>
 #include <exception>
@@ -33,26 +34,11 @@ const char* repose_command_usage() {
 
 namespace {
 
-bool parse_number(const std::string& s, double& v) {
-  try {
-    std::size_t used = 0;
-    v = std::stod(s, &used);
-    return used == s.size() && std::isfinite(v);
-  } catch (const std::exception&) {
-    return false;
-  }
-}
+using cli_args::parse_number;
 
 bool parse_point(const std::string& s, pp::Vec3& p) {
   std::vector<double> v;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    double x;
-    if (!parse_number(item, x)) return false;
-    v.push_back(x);
-  }
-  if (v.size() != 3 || s.back() == ',') return false;
+  if (!cli_args::parse_numbers(s, 3, v)) return false;
   p = pp::Vec3(v[0], v[1], v[2]);
   return true;
 }

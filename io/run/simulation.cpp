@@ -149,25 +149,22 @@ OutputStages add_output_stages(Simulation& s, const RunOptions& opt) {
     vtk = v.get();
     s.pipeline.add(std::move(v));
   }
+  // An output's cadence in steps: every_steps, else every (s), else the frames'.
+  auto cadence = [&](std::int64_t every_steps, double every) -> std::int64_t {
+    if (every_steps > 0) return every_steps;
+    if (every > 0) return std::max<std::int64_t>(1, std::llround(every / s.scene.clock.dt));
+    return frame_steps(o, s.scene.clock.dt);
+  };
   if (o.solid_fraction.enabled) {
     const auto& sf = o.solid_fraction;
-    const std::int64_t every = sf.every_steps > 0 ? sf.every_steps
-                               : sf.every > 0     ? std::max<std::int64_t>(1, std::llround(sf.every / s.scene.clock.dt))
-                                                  : frame_steps(o, s.scene.clock.dt);
-    s.pipeline.add(std::make_unique<SolidFractionOutput>(opt.out_dir, sf, every));
+    s.pipeline.add(std::make_unique<SolidFractionOutput>(opt.out_dir, sf, cadence(sf.every_steps, sf.every)));
   }
   if (o.mass.enabled) {
-    const std::int64_t every = o.mass.every_steps > 0 ? o.mass.every_steps
-                               : o.mass.every > 0    ? std::max<std::int64_t>(1, std::llround(o.mass.every / s.scene.clock.dt))
-                                                     : frame_steps(o, s.scene.clock.dt);
-    s.pipeline.add(std::make_unique<MassOutput>(opt.out_dir, o.mass, every));
+    s.pipeline.add(std::make_unique<MassOutput>(opt.out_dir, o.mass, cadence(o.mass.every_steps, o.mass.every)));
   }
   if (o.wall_loads.enabled) {
     const auto& wl = o.wall_loads;
-    const std::int64_t every = wl.every_steps > 0 ? wl.every_steps
-                               : wl.every > 0     ? std::max<std::int64_t>(1, std::llround(wl.every / s.scene.clock.dt))
-                                                  : frame_steps(o, s.scene.clock.dt);
-    s.pipeline.add(std::make_unique<WallLoadOutput>(opt.out_dir, wl, every));
+    s.pipeline.add(std::make_unique<WallLoadOutput>(opt.out_dir, wl, cadence(wl.every_steps, wl.every)));
   }
   if (o.progress && !opt.quiet) s.pipeline.add(std::make_unique<Progress>(*opt.log, o.progress_interval));
   // Last of the output phase: a checkpoint holds the frames of its own step.
