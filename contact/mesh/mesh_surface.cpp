@@ -48,6 +48,7 @@ MeshSurface::MeshSurface(std::vector<Vec3> vertices, std::vector<std::array<int,
     : vertices_(std::move(vertices)), faces_(std::move(faces)), one_sided_(one_sided) {
   const std::size_t nf = faces_.size(), nv = vertices_.size();
   normal_.resize(nf);
+  edge_plane_.resize(nf);
   face_edge_.resize(nf);
   std::unordered_map<std::uint64_t, int> edge_id;
   edge_id.reserve(3 * nf / 2 + 1);
@@ -56,6 +57,11 @@ MeshSurface::MeshSurface(std::vector<Vec3> vertices, std::vector<std::array<int,
     const auto& t = faces_[f];
     const Vec3 n = (vertices_[t[1]] - vertices_[t[0]]).cross(vertices_[t[2]] - vertices_[t[0]]);
     normal_[f] = n.norm() > 0 ? Vec3(n.normalized()) : Vec3(0, 0, 1);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& a = vertices_[t[k]];
+      const Vec3 m = normal_[f].cross(vertices_[t[(k + 1) % 3]] - a).normalized();  // counter-clockwise: inwards
+      edge_plane_[f][static_cast<std::size_t>(k)] = {m, m.dot(a)};
+    }
     for (int k = 0; k < 3; ++k) {
       const int a = t[k], b = t[(k + 1) % 3];
       const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::uint32_t(std::max(a, b));
@@ -127,7 +133,8 @@ int MeshSurface::build(int begin, int end, const std::vector<Vec3>& centroid) {
 
 std::size_t MeshSurface::bytes() const {
   return vertices_.capacity() * sizeof(Vec3) + faces_.capacity() * sizeof(faces_[0]) +
-         normal_.capacity() * sizeof(Vec3) + face_edge_.capacity() * sizeof(face_edge_[0]) +
+         normal_.capacity() * sizeof(Vec3) + edge_plane_.capacity() * sizeof(edge_plane_[0]) +
+         face_edge_.capacity() * sizeof(face_edge_[0]) +
          edge_vertex_.capacity() * sizeof(edge_vertex_[0]) +
          (edge_face_start_.capacity() + edge_face_.capacity() + vertex_face_start_.capacity() +
           vertex_face_.capacity() + vertex_edge_start_.capacity() + vertex_edge_.capacity() + order_.capacity()) *
@@ -221,7 +228,7 @@ int MeshSurface::resolve_sphere(const Vec3& x, double r, std::span<const std::ui
   for (const auto& c : cand) {
     if (c.f != TriangleFeature::Face) continue;
     found.emplace_back();
-    face_contact(x, r, c.t, c.q, found.back());
+    face_contact(x, r, c.t, found.back());
   }
   // Edges: one contact per edge, when it is the local minimum for all its faces.
   done_edges.clear();

@@ -92,31 +92,36 @@ class MeshSurface {
                                     int max) const {
     const double r2 = r * r;
     int hit = -1;
-    TrianglePoint first{};
+    bool inside = false;
     for (const auto t : tris) {
       const auto& f = faces_[t];
-      const Vec3& a = vertices_[f[0]];
-      const double h = normal_[t].dot(x - a);
+      const double h = normal_[t].dot(x - vertices_[f[0]]);
       if (h * h >= r2) continue;  // its plane is beyond the radius
-      const TrianglePoint tp = closest_point_on_triangle(x, a, vertices_[f[1]], vertices_[f[2]]);
-      if ((x - tp.point).squaredNorm() >= r2) continue;
+      // The distances of x from the lines of the three edges, in the plane
+      // (positive inside): all positive, x is over the face; the largest
+      // outside bounds the distance from the triangle from below.
+      const auto& e = edge_plane_[t];
+      const double s0 = e[0].dot(x) - e[0].w(), s1 = e[1].dot(x) - e[1].w(), s2 = e[2].dot(x) - e[2].w();
+      const double out_by = std::max({-s0, -s1, -s2});
+      if (out_by > 0 && out_by * out_by + h * h >= r2) continue;
       if (hit >= 0) return resolve_sphere(x, r, tris, out, max);  // several: the full rule
       hit = static_cast<int>(t);
-      first = tp;
+      inside = out_by < 0;
     }
     if (hit < 0) return 0;
-    if (first.feature != TriangleFeature::Face || max < 1) return resolve_sphere(x, r, tris, out, max);
-    face_contact(x, r, hit, first.point, out[0]);
+    if (!inside || max < 1) return resolve_sphere(x, r, tris, out, max);
+    face_contact(x, r, hit, out[0]);
     return 1;
   }
-  /// The contact of sphere (x, r) with the face of triangle t (q its nearest
-  /// point there): the plane's, as a plane wall computes it (normal towards
-  /// the centre unless one-sided, the centre's distance, its foot).
-  GRAINS_INLINE void face_contact(const Vec3& x, double r, int t, const Vec3& q, MeshContact& out) const {
+  /// The contact of sphere (x, r) with the face of triangle t: the plane's,
+  /// as a plane wall computes it (normal towards the centre unless
+  /// one-sided, the centre's distance, its foot).
+  GRAINS_INLINE void face_contact(const Vec3& x, double r, int t, MeshContact& out) const {
     const auto k = static_cast<std::size_t>(t);
     const Vec3& n0 = normal_[k];
-    const Vec3 n = one_sided_ || n0.dot(x - q) >= 0 ? n0 : Vec3(-n0);
-    const double s = n.dot(x - vertices_[faces_[k][0]]);
+    const Vec3& a = vertices_[faces_[k][0]];
+    const Vec3 n = one_sided_ || n0.dot(x - a) >= 0 ? n0 : Vec3(-n0);
+    const double s = n.dot(x - a);
     out = {Vec3(x - n * s), n, r - s, r, t, 0};
   }
 
@@ -137,6 +142,13 @@ class MeshSurface {
   std::vector<Vec3> vertices_;
   std::vector<std::array<int, 3>> faces_;
   std::vector<Vec3> normal_;                     // unit, counter-clockwise
+  struct EdgePlane {                             // unit in-plane normal of an edge, into the face, and its offset
+    Vec3 m;
+    double off;
+    double dot(const Vec3& x) const { return m.dot(x); }
+    double w() const { return off; }
+  };
+  std::vector<std::array<EdgePlane, 3>> edge_plane_;
   std::vector<std::array<int, 3>> face_edge_;    // edge k runs from corner k to corner k + 1
   std::vector<std::array<int, 2>> edge_vertex_;  // endpoints
   std::vector<int> edge_face_start_, edge_face_;       // faces of each edge (CSR)

@@ -574,7 +574,7 @@ TEST(MeshWall, SurfaceMemoryPerTriangle) {
   const MeshSurface s(m.v, m.f, false);
   const double per = static_cast<double>(s.bytes()) / static_cast<double>(s.triangles());
   std::cout << s.triangles() << " triangles: " << s.bytes() / 1e6 << " MB, " << per << " bytes per triangle\n";
-  EXPECT_LT(per, 300.0);  // measured 2026-11-26: 259 (leaves of 2 triangles)
+  EXPECT_LT(per, 400.0);  // measured 2026-11-26: 355 (leaves of 2 triangles, the edges' in-plane normals)
 }
 
 }  // namespace
