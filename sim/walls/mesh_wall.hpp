@@ -41,7 +41,7 @@ namespace grains::sim {
 struct MeshWall : WallCommon {
   static constexpr const char* kind = "mesh";
   static constexpr const char* position_name = "offset";
-  static constexpr bool tagged = true;  // slots carry the contact's normal (ParticleStore::wall_tags)
+  static constexpr bool tagged = true;  // slots carry the contact's normal, and a mask of those held (ParticleStore::wall_tags)
   static constexpr int kMaxFound = 16;  // contacts looked at per particle and step
 
   std::shared_ptr<const contact::MeshSurface> surface;  // body frame
@@ -162,7 +162,9 @@ struct MeshWall : WallCommon {
     return velocity.norm() + vib + std::abs(angular_velocity) * reach;
   }
   /// The velocity of the wall's surface at world point q.
-  Vec3 surface_velocity(const Vec3& q) const { return v_now + w_now.cross(q - (axis_point + offset)); }
+  Vec3 surface_velocity(const Vec3& q) const {
+    return moving ? Vec3(v_now + w_now.cross(q - (axis_point + offset))) : v_now;
+  }
   /// The point torques are taken about, now.
   Vec3 load_point() const { return R * torque_point + T; }
   Vec3 to_body(const Vec3& x) const { return moving ? Vec3(R.transpose() * (x - T)) : x; }
@@ -220,7 +222,9 @@ struct MeshWall : WallCommon {
   template <class Slots, class Emit>
   GRAINS_INLINE void emit_all(const contact::MeshContact* found, int n, Slots& slots, Emit& emit) const {
     unsigned taken = 0;
-    const int K = contacts_per_particle;
+    const unsigned all = (1u << contacts_per_particle) - 1u;
+    unsigned held = 0;  // the slots holding a contact (the mask after the tags)
+    if constexpr (std::decay_t<Slots>::keeps_history()) held = slots.mask();
     for (int j = 0; j < n; ++j) {
       contact::ContactGeometry g;
       g.normal = moving ? Vec3(R * found[j].normal) : found[j].normal;
@@ -228,17 +232,19 @@ struct MeshWall : WallCommon {
       g.overlap = found[j].depth;
       g.radius = found[j].radius;
       int slot = -1;
-      if (slots.keeps_history()) {
+      if constexpr (std::decay_t<Slots>::keeps_history()) {
         // The held slot whose contact's normal is nearest (within 60 degrees), else a free one.
         double best = 0.5;
-        for (int k = 0; k < K; ++k) {
-          if (taken >> k & 1u) continue;
+        for (unsigned m = held & ~taken; m != 0; m &= m - 1) {
+          const int k = __builtin_ctz(m);
           const double* t = slots.tag(k);
           const double c = t[0] * g.normal.x() + t[1] * g.normal.y() + t[2] * g.normal.z();
           if (c > best) best = c, slot = k;
         }
-        for (int k = 0; slot < 0 && k < K; ++k)
-          if (!(taken >> k & 1u) && !slots.held(k)) slot = k;
+        if (slot < 0 && (all & ~(held | taken)) != 0) {
+          slot = __builtin_ctz(all & ~(held | taken));
+          held |= 1u << slot;
+        }
         if (slot >= 0) {
           taken |= 1u << slot;
           double* t = slots.tag(slot);
@@ -247,6 +253,7 @@ struct MeshWall : WallCommon {
       }
       emit(g, slot);
     }
+    if constexpr (std::decay_t<Slots>::keeps_history()) slots.set_mask(held);
   }
 };
 

@@ -6,7 +6,8 @@
 // each kind supplies its contacts (wall_kind.hpp), this loop evaluates them
 // over the wall's near list, keeps the history per (particle, wall slot) in
 // the particle's wall-history field (and, for tagged kinds, the contact's
-// normal in wall_tags) and clears the slots a particle no longer uses. With
+// normal and a mask of the slots held in wall_tags) and clears the slots a
+// particle no longer uses. With
 // Shapes = true (scenes with ellipsoids) the geometry is chosen per
 // particle: sphere or ellipsoid. When the scene measures wall loads, each
 // wall's force and torque are summed (per thread, then in thread order).
@@ -49,19 +50,22 @@ struct WallContact {
 template <int H, bool Tagged>
 struct WallSlots {
   double* hist;  // H doubles per slot (null when H = 0)
-  double* tags;  // 3 doubles per slot (tagged kinds with history)
+  double* tags;  // tagged kinds with history: 3 doubles per slot, then the mask of the slots held
+  int n = 1;     // slots
   static constexpr bool keeps_history() { return H > 0; }
   bool held(int k) const {
     if constexpr (H == 0) {
       (void)k;
       return false;
     } else if constexpr (Tagged) {
-      return tags[3 * k] != 0.0 || tags[3 * k + 1] != 0.0 || tags[3 * k + 2] != 0.0;
+      return (mask() >> k & 1u) != 0;
     } else {
       return std::any_of(hist + k * H, hist + (k + 1) * H, [](double v) { return v != 0.0; });
     }
   }
   double* tag(int k) const { return tags + 3 * k; }
+  unsigned mask() const { return static_cast<unsigned>(tags[3 * n]); }
+  void set_mask(unsigned m) const { tags[3 * n] = static_cast<double>(m); }
 };
 
 template <class Law, bool Shapes = false>
@@ -107,7 +111,7 @@ class WallStage final : public Stage {
       const std::size_t i = near[static_cast<std::size_t>(m)];
       double* hist = H > 0 ? p.wall_history.data() + i * WH + wall.history_slot * H : nullptr;
       double* tags = Tagged ? p.wall_tags.data() + i * WT + wall.tag_offset : nullptr;
-      const WallSlots<H, Tagged> sl{hist, tags};
+      const WallSlots<H, Tagged> sl{hist, tags, slots};
       unsigned used = 0;  // the slots a contact used this step
       wall.template contacts<Shapes>(p, i, items.row(static_cast<std::size_t>(m)), sl,
                                      [&](const contact::ContactGeometry& g, int slot) {
@@ -134,15 +138,19 @@ class WallStage final : public Stage {
       if constexpr (H > 0) {
         if (slots == 1) {  // most walls: one fill of known size
           if (used == 0) std::fill_n(hist, H, 0.0);
+        } else if constexpr (Tagged) {  // only the slots just left are cleared
+          const unsigned held = sl.mask();
+          if (held & ~used) {
+            for (unsigned m = held & ~used; m != 0; m &= m - 1) {
+              const int k = __builtin_ctz(m);
+              std::fill_n(hist + k * H, H, 0.0);
+              std::fill_n(tags + 3 * k, 3, 0.0);
+            }
+            sl.set_mask(held & used);
+          }
         } else {
           for (int k = 0; k < slots; ++k)
-            if (!(used >> k & 1u)) {
-              if constexpr (Tagged) {  // a free slot has no tag: only those just left are cleared
-                if (!sl.held(k)) continue;
-                std::fill_n(tags + 3 * k, 3, 0.0);
-              }
-              std::fill_n(hist + k * H, H, 0.0);
-            }
+            if (!(used >> k & 1u)) std::fill_n(hist + k * H, H, 0.0);
         }
       }
     });
