@@ -22,13 +22,17 @@ std::string WallLoadOutput::name() const {
   return "output.wall_loads(" + (every_ > 0 ? "every " + std::to_string(every_) + " steps" : std::string("last")) + ")";
 }
 
-void WallLoadOutput::start(sim::Scene& s) {
-  s.wall_loads.assign(s.walls.count(), {});
+void WallLoadOutput::prepare(sim::Scene& s) {
+  s.wall_loads.assign(s.walls.count(), {});  // from now on the wall stage sums them
   sums_.assign(s.walls.count(), {});
   s.walls.for_each([&](const auto& w, std::size_t k) {
     sums_[k].name = w.name;
     sums_[k].kind = std::decay_t<decltype(w)>::kind;
   });
+}
+
+void WallLoadOutput::start(sim::Scene& s) {
+  prepare(s);
   if (sim::Comm::world().root()) {
     out_.open(file_, std::ios::trunc);
     if (!out_) throw std::runtime_error("cannot write '" + file_.string() + "'");
@@ -37,14 +41,10 @@ void WallLoadOutput::start(sim::Scene& s) {
 }
 
 void WallLoadOutput::restart(sim::Scene& s, const sim::RestartPoint&) {
-  const std::int64_t step = s.clock.step;
-  start(s);
-  if (sim::Comm::world().root()) {
-    out_.close();
-    // The mean of summary.json starts again from the restart (the rows before are kept).
-    reopen_before(out_, file_, kHeader, step + 1);
-  }
-  last_step_ = step;  // the restored step's loads are not known until it steps again
+  prepare(s);
+  // The rows up to the restored step are kept; summary.json's mean starts again from it.
+  if (sim::Comm::world().root()) reopen_before(out_, file_, kHeader, s.clock.step + 1);
+  last_step_ = s.clock.step;  // the restored step's loads are not known until it steps again
 }
 
 void WallLoadOutput::write_rows(const sim::Scene& s) {

@@ -35,6 +35,7 @@ class WallLoadOutput final : public sim::Stage {
   std::string summary_json() const override;
 
  private:
+  void prepare(sim::Scene& s);
   void write_rows(const sim::Scene& s);
   std::filesystem::path file_;
   WallLoadConfig cfg_;

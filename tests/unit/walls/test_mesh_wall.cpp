@@ -452,6 +452,11 @@ TEST(MeshWallCase, BadInputGetsLocatedErrors) {
   EXPECT_NE(e.find("must not be the zero vector"), std::string::npos) << e;
   e = errors_of(floor_case("file: " + off.string() + ", angular_velocity: 1, rpm: 10"));
   EXPECT_NE(e.find("not both"), std::string::npos) << e;
+  e = errors_of(floor_case("file: " + off.string() + ", vibration_amplitude: [0, 0, 0.001]"));
+  EXPECT_NE(e.find("vibration_frequency > 0"), std::string::npos) << e;
+  e = errors_of(floor_case("file: " + off.string()) + "output: {wall_loads: {every: 0.01, every_steps: 10}}\n");
+  EXPECT_NE(e.find("output.wall_loads"), std::string::npos) << e;
+  EXPECT_NE(e.find("not both"), std::string::npos) << e;
   e = errors_of(floor_case("file: " + off.string() + ", contacts_per_particle: 40"));
   EXPECT_NE(e.find("contacts_per_particle"), std::string::npos) << e;
   // A particle starting inside the mesh beyond the tolerance.
@@ -486,7 +491,8 @@ TEST(MeshWall, RotatingDrumContinuesBitwiseFromItsCheckpoints) {
   // Checkpoints during the ramp (step 2000, t = 0.02 s) and at full speed (4000).
   const std::string text =
       drum_case(off, ", axis: [0, 1, 0], angular_velocity: 20, start: 0.01, ramp: 0.02", 0.06,
-                "output: {every: 0.02, progress: false}\ncheckpoint: {every_steps: 2000, keep: 10}\n");
+                "output: {every: 0.02, progress: false, wall_loads: {every_steps: 500}}\n"
+                "checkpoint: {every_steps: 2000, keep: 10}\n");
   auto full = make(text);
   io::RunOptions o;
   o.quiet = true;
@@ -505,6 +511,17 @@ TEST(MeshWall, RotatingDrumContinuesBitwiseFromItsCheckpoints) {
     EXPECT_TRUE(a.R == b.R && a.T == b.T);
     EXPECT_EQ(full.scene.neighbors.wall_items, part.scene.neighbors.wall_items);
   }
+  // Resumed in its own folder, the run writes the same wall loads: the rows
+  // before the checkpoint are kept, those after written again.
+  const std::string loads = read_text(tmp.path / "full" / "wall_loads.csv");
+  EXPECT_GT(std::count(loads.begin(), loads.end(), '\n'), 12);
+  {
+    auto again = make(text);
+    io::RunOptions p = o;
+    p.restart = tmp.path / "full" / "checkpoints" / io::checkpoint_name(2000);
+    io::run(again, p);
+  }
+  EXPECT_EQ(read_text(tmp.path / "full" / "wall_loads.csv"), loads);
   // A mesh with another triangle count than the checkpoint's is refused.
   write_off(off, drum(Vec3(0, 0, 0), 0.01, 0.006, 40, 3));
   auto other = make(text);
