@@ -146,8 +146,7 @@ void check_mesh_walls(const SceneConfig& c, Scene& s) {
     for (std::size_t i = 0; i < p.n_owned(); ++i) {
       double depth = 0;
       if (p.shape[i] == kEllipsoid) {
-        const contact::Ellipsoid el{p.x[i], p.semi_axes[i], p.orientation[i]};
-        if (w.touches(el)) depth = w.ellipsoid_depth(el);
+        depth = w.ellipsoid_depth({p.x[i], p.semi_axes[i], p.orientation[i]});
       } else {
         depth = w.overlap(p.x[i], p.radius[i]);
       }

@@ -18,8 +18,8 @@
 // slot's tag: the contact of the previous step whose normal is nearest,
 // within 60 degrees), so the tangential spring follows a particle from one
 // triangle to its neighbour. Not a slot per triangle: `contacts_per_particle`
-// slots (default 4) per particle and mesh wall; a contact beyond them has
-// no history (counted).
+// slots (default 4) per particle and mesh wall, with a mask of those in use;
+// a contact beyond them has no history.
 #include <algorithm>
 #include <cmath>
 #include <limits>
