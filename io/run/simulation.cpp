@@ -331,12 +331,9 @@ std::string describe(const Simulation& s) {
   o << "particles: " << sc.particles.n_owned();
   if (sc.bodies.size() > 0) o << " (of which the balls of " << sc.bodies.size() << " clumps)";
   o << " in " << s.c.scene.sets.size() << " set(s); walls: " << sc.walls.describe() << "\n";
-  for (const auto& w : sc.walls.of<sim::MeshWall>()) {
-    const auto& m = *w.surface;
-    o << "mesh wall '" << w.name << "': " << w.file << ", " << m.triangles() << " triangles, " << m.boundary_edges()
-      << " open edge(s), " << m.nonmanifold_edges() << " non-manifold, " << (m.one_sided() ? "one" : "two")
-      << "-sided, " << m.bytes() / 1e6 << " MB on every rank" << (w.moving ? ", moving" : "") << "\n";
-  }
+  sc.walls.for_each([&](const auto& w, std::size_t) {  // kinds with more to say than their count
+    if constexpr (requires { w.description(); }) o << w.description() << "\n";
+  });
   o << "time step: " << sc.clock.dt << " s (" << sc.clock.dt / s.rayleigh_time << " Rayleigh times), "
     << sc.clock.n_steps << " steps to t = " << sc.clock.end_time << " s\n";
   o << "contact history per contact: " << sc.neighbors.history_size() << " doubles\n";

@@ -118,51 +118,6 @@ SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs) {
   return n;
 }
 
-namespace {
-
-// Mesh walls against the domain and the initial particles: a mesh far larger
-// than the domain (its file in other units), one outside it, and particles
-// that start inside a mesh beyond the overlap tolerance are set-up errors.
-void check_mesh_walls(const SceneConfig& c, Scene& s) {
-  const auto& p = s.particles;
-  const Vec3 dlo = s.domain.lo, dhi = s.domain.hi;
-  const double diag = (dhi - dlo).norm();
-  for (const auto& w : s.walls.of<MeshWall>()) {
-    const std::string at = (w.where.empty() ? "walls" : w.where) + ": mesh wall '" + w.name + "' ('" + w.file + "')";
-    const Vec3 lo = w.surface->bbox_min(), hi = w.surface->bbox_max();
-    const double size = (hi - lo).norm();
-    std::ostringstream e;
-    e.precision(4);
-    if (size > 100 * diag) {
-      e << at << " is " << size / diag << " times the domain's size (bounding-box diagonal " << size << " m against "
-        << diag << " m): its file is probably in other units; give scale: 0.001 for a file in millimetres";
-      throw SetupError(e.str());
-    }
-    if ((lo.array() > dhi.array()).any() || (hi.array() < dlo.array()).any()) {
-      e << at << " lies outside the domain (its bounding box [" << lo.transpose() << "] to [" << hi.transpose()
-        << "], the domain's [" << dlo.transpose() << "] to [" << dhi.transpose() << "]): check translate and scale";
-      throw SetupError(e.str());
-    }
-    for (std::size_t i = 0; i < p.n_owned(); ++i) {
-      double depth = 0;
-      if (p.shape[i] == kEllipsoid) {
-        depth = w.ellipsoid_depth({p.x[i], p.semi_axes[i], p.orientation[i]});
-      } else {
-        depth = w.overlap(p.x[i], p.radius[i]);
-      }
-      if (depth > c.overlap_tolerance * p.radius[i]) {
-        e << at << ": particle " << p.id[i] << " at [" << p.x[i].transpose() << "] (radius " << p.radius[i]
-          << " m) starts " << depth << " m inside the mesh, " << 100 * depth / p.radius[i]
-          << "% of its radius (neighbor.overlap_tolerance accepts " << 100 * c.overlap_tolerance
-          << "%): place the particles clear of the mesh (a region inside it) or move the mesh";
-        throw SetupError(e.str());
-      }
-    }
-  }
-}
-
-}  // namespace
-
 double rayleigh_time(const SceneConfig& c) {
   double t = std::numeric_limits<double>::infinity();
   std::vector<const ParticleSetConfig*> sets;
@@ -304,7 +259,14 @@ Scene build_scene(SceneConfig& c) {
                      (need.ellipsoids ? "ellipsoids" : "clumps"));
 
   if (need.clumps) place_clump_balls(s.particles, s.bodies, true);
-  check_mesh_walls(c, s);
+  // Kinds that check themselves against the domain and the initial particles
+  // (a mesh wall: its units, its place, particles starting inside it).
+  s.walls.for_each([&](const auto& w, std::size_t) {
+    if constexpr (requires { w.setup_error(s.domain.lo, s.domain.hi, s.particles, c.overlap_tolerance); }) {
+      const std::string e = w.setup_error(s.domain.lo, s.domain.hi, s.particles, c.overlap_tolerance);
+      if (!e.empty()) throw SetupError(e);
+    }
+  });
   double rmax = 0;
   for (const auto r : s.particles.radius) rmax = std::max(rmax, r);
   // Grains inserted later: their largest sphere or ellipsoid radius, or clump ball.

@@ -48,6 +48,45 @@ MeshWall MeshWall::from_keys(KeyReader& r) {
   return w;
 }
 
+std::string MeshWall::setup_error(const Vec3& dlo, const Vec3& dhi, const ParticleStore& p, double tolerance) const {
+  const std::string at = (where.empty() ? "walls" : where) + ": mesh wall '" + name + "' ('" + file + "')";
+  const Vec3 lo = surface->bbox_min(), hi = surface->bbox_max();
+  const double size = (hi - lo).norm(), diag = (dhi - dlo).norm();
+  std::ostringstream e;
+  e.precision(4);
+  if (size > 100 * diag) {
+    e << at << " is " << size / diag << " times the domain's size (bounding-box diagonal " << size << " m against "
+      << diag << " m): its file is probably in other units; give scale: 0.001 for a file in millimetres";
+    return e.str();
+  }
+  if ((lo.array() > dhi.array()).any() || (hi.array() < dlo.array()).any()) {
+    e << at << " lies outside the domain (its bounding box [" << lo.transpose() << "] to [" << hi.transpose()
+      << "], the domain's [" << dlo.transpose() << "] to [" << dhi.transpose() << "]): check translate and scale";
+    return e.str();
+  }
+  for (std::size_t i = 0; i < p.n_owned(); ++i) {
+    const double depth = p.shape[i] == kEllipsoid ? ellipsoid_depth({p.x[i], p.semi_axes[i], p.orientation[i]})
+                                                  : overlap(p.x[i], p.radius[i]);
+    if (depth > tolerance * p.radius[i]) {
+      e << at << ": particle " << p.id[i] << " at [" << p.x[i].transpose() << "] (radius " << p.radius[i]
+        << " m) starts " << depth << " m inside the mesh, " << 100 * depth / p.radius[i]
+        << "% of its radius (neighbor.overlap_tolerance accepts " << 100 * tolerance
+        << "%): place the particles clear of the mesh (a region inside it) or move the mesh";
+      return e.str();
+    }
+  }
+  return {};
+}
+
+std::string MeshWall::description() const {
+  std::ostringstream o;
+  o << "mesh wall '" << name << "': " << file << ", " << surface->triangles() << " triangles, "
+    << surface->boundary_edges() << " open edge(s), " << surface->nonmanifold_edges() << " non-manifold, "
+    << (surface->one_sided() ? "one" : "two") << "-sided, " << surface->bytes() / 1e6 << " MB on every rank"
+    << (moving ? ", moving" : "");
+  return o.str();
+}
+
 void MeshWall::near_list(const ParticleStore& p, std::size_t n, double skin, bool, std::vector<std::uint32_t>& out,
                          NearItems& items) const {
   items.start.assign(1, 0);

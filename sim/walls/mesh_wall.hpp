@@ -109,6 +109,15 @@ struct MeshWall : WallCommon {
 
   int slots(bool) const { return contacts_per_particle; }
 
+  /// Set-up errors against the domain [lo, hi] and the initial particles
+  /// (empty: none): a mesh 100 times the domain's size (its file in other
+  /// units), a mesh outside the domain, a particle starting inside the mesh
+  /// beyond `tolerance` of its radius.
+  std::string setup_error(const Vec3& lo, const Vec3& hi, const ParticleStore& p, double tolerance) const;
+  /// One line for `grains check`: file, triangles, open and non-manifold
+  /// edges, sides, memory on every rank, motion.
+  std::string description() const;
+
   // ---- motion ----
   /// Speed factor of the ramp at motion time t, and its integral from 0.
   double ramp_factor(double t) const {
