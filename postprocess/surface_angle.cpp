@@ -38,6 +38,8 @@ void check_options(const Frame& f, const SurfaceAngleOptions& o) {
     throw std::invalid_argument("the drum radius must be a positive length (0 for the particles' extent)");
   if (!(o.span > 0 && o.span <= 1))
     throw std::invalid_argument("the span must lie in (0, 1] (a fraction of the radius)");
+  if (!std::isfinite(o.near_ends) || o.near_ends < 0)
+    throw std::invalid_argument("the end-wall band must be a positive length (0 for the whole bed)");
   if (o.min_columns < 2) throw std::invalid_argument("a line needs at least 2 columns");
   if (f.radius.size() != f.x.size())
     throw std::invalid_argument("the frame has " + std::to_string(f.x.size()) + " particles but " +
@@ -80,9 +82,18 @@ SurfaceAngle surface_angle(const Frame& f, const SurfaceAngleOptions& opt) {
   const std::size_t n_cols = static_cast<std::size_t>(k_hi - k_lo + 1);
   const double none = -std::numeric_limits<double>::infinity();
   std::vector<double> top(n_cols, none), at(n_cols, 0);
+  // The bed's ends along the axis, for the end-wall bands.
+  double a_lo = std::numeric_limits<double>::infinity(), a_hi = -a_lo;
+  if (opt.near_ends > 0)
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      const double a = f.x[i][opt.axis], b = f.bounding_radius(i);
+      a_lo = std::min(a_lo, a - b), a_hi = std::max(a_hi, a + b);
+    }
   for (std::size_t i = 0; i < f.size(); ++i) {
     const double du = f.x[i][iu] - uc;
     if (std::abs(du) > half) continue;
+    if (opt.near_ends > 0 && f.x[i][opt.axis] - a_lo > opt.near_ends && a_hi - f.x[i][opt.axis] > opt.near_ends)
+      continue;
     const long k = std::clamp(static_cast<long>(std::floor(du / r.column)), k_lo, k_hi);
     const auto c = static_cast<std::size_t>(k - k_lo);
     const double h = f.x[i].z() + half_height(f, i);
@@ -195,7 +206,8 @@ std::vector<fs::path> write_repose(const std::vector<SurfaceAngle>& frames, cons
     o << "{\n  \"frames\": " << s.frames << ",\n  \"mean_deg\": " << s.mean_deg << ",\n  \"std_deg\": " << s.std_deg
       << ",\n  \"standard_error_deg\": " << s.standard_error_deg << ",\n  \"from_s\": " << s.from_s
       << ",\n  \"to_s\": " << s.to_s << ",\n  \"axis\": \"" << axis_name(opt.axis) << "\",\n  \"column_m\": " << column
-      << ",\n  \"span\": " << opt.span << ",\n  \"radius_m\": " << radius << ",\n  \"centre\": [" << opt.centre.x()
+      << ",\n  \"span\": " << opt.span
+      << ",\n  \"near_ends_m\": " << opt.near_ends << ",\n  \"radius_m\": " << radius << ",\n  \"centre\": [" << opt.centre.x()
       << ", " << opt.centre.y() << ", " << opt.centre.z() << "]";
     for (const auto& [k, v] : extra) o << ",\n  \"" << k << "\": " << v;
     o << "\n}\n";

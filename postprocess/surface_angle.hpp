@@ -18,6 +18,12 @@
 // ellipsoid along z for an ellipsoid). Only that particle of each column
 // counts: the particles beneath it do not change the result.
 //
+// Near the end walls (`near_ends` e > 0): only the particles whose centres
+// lie within e of either end of the bed along the axis (the frame's smallest
+// and largest particle extent along it) make the columns: the surface an
+// experiment films through a transparent end plate, steeper than the
+// middle's where the end walls' friction holds the bed up.
+//
 // Angle: a straight line v = a u + b is fitted to the columns' tops by least
 // squares; the angle is atan(|a|) in degrees, `slope` a keeps the sign (a > 0:
 // the surface is higher on the +u side), `rms_residual` is
@@ -44,6 +50,8 @@ struct SurfaceAngleOptions {
   double column = 0;            // column width, m; 0: 2 mean diameters of the frame
   double radius = 0;            // drum radius R, m; 0: largest far edge of a particle from the axis
   double span = 0.6;            // columns over |u - u_c| <= span R, 0 < span <= 1
+  double near_ends = 0;         // > 0: only particles whose centres lie within this distance (m) of either end
+                                // of the bed along the axis (what a camera sees through a glass end plate)
   std::size_t min_columns = 4;  // fewer columns with particles: the frame is refused
 };
 

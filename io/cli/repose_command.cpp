@@ -17,7 +17,7 @@ namespace pp = grains::postprocess;
 
 const char* repose_command_usage() {
   return "usage: grains repose OUTDIR [--axis x|y] [--centre X,Y,Z] [--radius R] [--column W] [--span F]\n"
-         "                            [--from T] [--to T] [-o DIR]\n"
+         "                            [--near-ends E] [--from T] [--to T] [-o DIR]\n"
          "  OUTDIR    a folder written by 'grains run' of a rotating drum (holds particles.pvd); gravity along -z\n"
          "  --axis    the drum's axis, x or y (default y)\n"
          "  --centre  a point on the axis, m (default: the centre of the run's mesh wall, or the axis of a\n"
@@ -25,6 +25,8 @@ const char* repose_command_usage() {
          "  --radius  drum radius, m (default: in each frame, the farthest particle edge from the axis)\n"
          "  --column  width of the columns whose tops make the surface, m (default 2 mean particle diameters)\n"
          "  --span    the columns cover |u - u_centre| <= span x radius (default 0.6; 0 < span <= 1)\n"
+         "  --near-ends  only the particles within E (m) of either end of the bed along the axis: the\n"
+         "            surface seen through a glass end plate, as drum experiments film it (default: all)\n"
          "  --from    first time measured, s (default 0)\n"
          "  --to      last time measured, s (default: the last frame)\n"
          "  -o DIR    where to write repose.csv and repose.json (default OUTDIR)\n"
@@ -100,6 +102,9 @@ int run_repose_command(const std::vector<std::string>& a, std::ostream& out, std
     } else if (s == "--span") {
       if (!has_value || !parse_number(value(), opt.span) || !(opt.span > 0 && opt.span <= 1))
         return bad("--span needs a fraction of the radius in (0, 1]");
+    } else if (s == "--near-ends") {
+      if (!has_value || !parse_number(value(), opt.near_ends) || opt.near_ends <= 0)
+        return bad("--near-ends needs a positive length (m)");
     } else if (s == "--from") {
       if (!has_value || !parse_number(value(), from)) return bad("--from needs a time (s)");
     } else if (s == "--to") {

@@ -165,6 +165,32 @@ TEST(SurfaceAngle, RefusesFewerThanFourColumns) {
   EXPECT_THROW(surface_angle(Frame{}, {}), SurfaceAngleRefused);
 }
 
+TEST(SurfaceAngle, NearEndsMeasuresOnlyTheBandsNextToTheEndWalls) {
+  // A bed 3 layers long at 40 degrees, 4 layers at 20 degrees beyond it
+  // along the axis (the middle of a long drum), and 3 more at 40 (the far
+  // end): the ends alone give 40 degrees, the whole bed's column tops mix.
+  Frame f;
+  const double a = 2 * kR;
+  const auto append = [&](double angle, double y0, int layers) {
+    Frame b = drum_bed(angle, 1, Vec3(0, y0, 0), 0, layers);
+    f.x.insert(f.x.end(), b.x.begin(), b.x.end());
+    f.radius.insert(f.radius.end(), b.radius.begin(), b.radius.end());
+  };
+  append(40, 0, 3);
+  append(20, 3 * a, 4);
+  append(40, 7 * a, 3);
+  SurfaceAngleOptions o;
+  o.near_ends = 2.5 * a;  // the first and the last three layers' centres lie within 2 spacings + kR of the ends
+  const auto ends = surface_angle(f, o);
+  EXPECT_NEAR(ends.angle_deg, surface_angle(drum_bed(40), {}).angle_deg, 1e-12);
+  o.near_ends = 0;
+  EXPECT_GT(std::abs(surface_angle(f, o).angle_deg - ends.angle_deg), 1.0);
+  o.near_ends = 0.5 * kR;  // no centre that close to an end: no columns
+  EXPECT_THROW(surface_angle(f, o), SurfaceAngleRefused);
+  o.near_ends = -1;
+  EXPECT_THROW(surface_angle(f, o), std::invalid_argument);
+}
+
 TEST(SurfaceAngle, RefusesBadOptions) {
   const Frame bed = drum_bed(30);
   SurfaceAngleOptions o;
@@ -288,6 +314,17 @@ TEST(ReposeCommand, MeasuresTheFramesInTheWindow) {
   EXPECT_TRUE(fs::exists(tmp.path / "elsewhere" / "repose.json"));
   EXPECT_NE(slurp(tmp.path / "elsewhere" / "repose.json").find("\"frames\": 1,"), std::string::npos);
 
+  // --near-ends: the frames are one layer long, so a band of a radius keeps
+  // every grain (the same angles) and is written to repose.json.
+  std::ostringstream out4, err4;
+  ASSERT_EQ(io::run_repose_command({run.string(), "--near-ends", "0.0015", "-o", (tmp.path / "ends").string()}, out4,
+                                   err4),
+            0)
+      << err4.str();
+  const std::string ends = slurp(tmp.path / "ends" / "repose.json");
+  EXPECT_NE(ends.find("\"near_ends_m\": 0.0015,"), std::string::npos) << ends;
+  EXPECT_NEAR(std::stod(ends.substr(ends.find("\"mean_deg\": ") + 12)), 32, 1.5);
+
   // Too narrow a span: every frame refused, said why, exit 1.
   std::ostringstream out3, err3;
   EXPECT_EQ(io::run_repose_command({run.string(), "--span", "0.1"}, out3, err3), 1);
@@ -296,6 +333,7 @@ TEST(ReposeCommand, MeasuresTheFramesInTheWindow) {
   // Bad arguments: one line, exit 2.
   for (const std::vector<std::string>& bad : {std::vector<std::string>{run.string(), "--axis", "z"},
                                               {run.string(), "--span", "2"},
+                                              {run.string(), "--near-ends", "0"},
                                               {run.string(), "--centre", "1,2"},
                                               {run.string(), "--from", "2", "--to", "1"},
                                               {run.string(), "--bogus"},
