@@ -28,7 +28,7 @@ double box_distance2(const Vec3& x, const Vec3& lo, const Vec3& hi) {
   return d2;
 }
 
-constexpr int kLeaf = 2;
+constexpr int kLeaf = 8;
 
 struct Candidate {
   int t;
@@ -48,7 +48,7 @@ MeshSurface::MeshSurface(std::vector<Vec3> vertices, std::vector<std::array<int,
     : vertices_(std::move(vertices)), faces_(std::move(faces)), one_sided_(one_sided) {
   const std::size_t nf = faces_.size(), nv = vertices_.size();
   normal_.resize(nf);
-  edge_plane_.resize(nf);
+  screen_.resize(nf);
   face_edge_.resize(nf);
   std::unordered_map<std::uint64_t, int> edge_id;
   edge_id.reserve(3 * nf / 2 + 1);
@@ -60,8 +60,10 @@ MeshSurface::MeshSurface(std::vector<Vec3> vertices, std::vector<std::array<int,
     for (int k = 0; k < 3; ++k) {
       const Vec3& a = vertices_[t[k]];
       const Vec3 m = normal_[f].cross(vertices_[t[(k + 1) % 3]] - a).normalized();  // counter-clockwise: inwards
-      edge_plane_[f][static_cast<std::size_t>(k)] = {m, m.dot(a)};
+      screen_[f].e[k] = {m, m.dot(a)};
     }
+    screen_[f].n = normal_[f];
+    screen_[f].off = normal_[f].dot(vertices_[t[0]]);
     for (int k = 0; k < 3; ++k) {
       const int a = t[k], b = t[(k + 1) % 3];
       const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::uint32_t(std::max(a, b));
@@ -91,12 +93,13 @@ MeshSurface::MeshSurface(std::vector<Vec3> vertices, std::vector<std::array<int,
     centroid[f] = (vertices_[faces_[f][0]] + vertices_[faces_[f][1]] + vertices_[faces_[f][2]]) / 3.0;
   order_.resize(nf);
   std::iota(order_.begin(), order_.end(), 0);
-  nodes_.reserve(2 * nf / kLeaf + 2);
-  if (nf > 0) build(0, static_cast<int>(nf), centroid);
+  nodes_.reserve(2 * nf);
+  if (nf > 0) build(0, static_cast<int>(nf), centroid, 0);
+  nodes_.shrink_to_fit();
   if (!nodes_.empty()) lo_ = nodes_[0].lo, hi_ = nodes_[0].hi;
 }
 
-int MeshSurface::build(int begin, int end, const std::vector<Vec3>& centroid) {
+int MeshSurface::build(int begin, int end, const std::vector<Vec3>& centroid, int depth) {
   const int id = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
@@ -117,15 +120,27 @@ int MeshSurface::build(int begin, int end, const std::vector<Vec3>& centroid) {
     nodes_[static_cast<std::size_t>(id)].count = end - begin;
     return id;
   }
+  // Split at the middle of the centroids' extent along its longest axis, so
+  // that parts of the mesh far apart (a vessel and a blade, a box and a
+  // plate beside it) part at the top of the hierarchy; the median when that
+  // leaves one side empty, and below depth 32 (the depth stays under
+  // 32 + log2(triangles): near()'s stack of 64).
   int axis = 0;
   (chi - clo).maxCoeff(&axis);
-  const int mid = (begin + end) / 2;
-  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end, [&](int a, int b) {
+  const double cut = 0.5 * (clo[axis] + chi[axis]);
+  const auto less = [&](int a, int b) {
     const double ca = centroid[static_cast<std::size_t>(a)][axis], cb = centroid[static_cast<std::size_t>(b)][axis];
     return ca < cb || (ca == cb && a < b);
-  });
-  const int left = build(begin, mid, centroid);
-  const int right = build(mid, end, centroid);
+  };
+  auto split = std::partition(order_.begin() + begin, order_.begin() + end,
+                              [&](int t) { return centroid[static_cast<std::size_t>(t)][axis] < cut; });
+  int mid = static_cast<int>(split - order_.begin());
+  if (mid == begin || mid == end || depth >= 32) {
+    mid = (begin + end) / 2;
+    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end, less);
+  }
+  const int left = build(begin, mid, centroid, depth + 1);
+  const int right = build(mid, end, centroid, depth + 1);
   nodes_[static_cast<std::size_t>(id)].left = left;
   nodes_[static_cast<std::size_t>(id)].right = right;
   return id;
@@ -133,7 +148,7 @@ int MeshSurface::build(int begin, int end, const std::vector<Vec3>& centroid) {
 
 std::size_t MeshSurface::bytes() const {
   return vertices_.capacity() * sizeof(Vec3) + faces_.capacity() * sizeof(faces_[0]) +
-         normal_.capacity() * sizeof(Vec3) + edge_plane_.capacity() * sizeof(edge_plane_[0]) +
+         normal_.capacity() * sizeof(Vec3) + screen_.capacity() * sizeof(Screen) +
          face_edge_.capacity() * sizeof(face_edge_[0]) +
          edge_vertex_.capacity() * sizeof(edge_vertex_[0]) +
          (edge_face_start_.capacity() + edge_face_.capacity() + vertex_face_start_.capacity() +
@@ -157,9 +172,20 @@ void MeshSurface::near(const Vec3& x, double reach, std::vector<std::uint32_t>& 
     if (nd.count > 0) {
       for (int k = nd.first; k < nd.first + nd.count; ++k) {
         const int t = order_[static_cast<std::size_t>(k)];
-        const auto& f = faces_[static_cast<std::size_t>(t)];
-        const double h = normal_[static_cast<std::size_t>(t)].dot(x - vertices_[f[0]]);
+        // The screen of sphere_contacts: the plane, then the edges' lines
+        // (over the face, the distance is the plane's; outside, the
+        // distance from the nearest line bounds it from below).
+        const Screen& sc = screen_[static_cast<std::size_t>(t)];
+        const double h = sc.n.dot(x) - sc.off;
         if (h * h >= r2) continue;  // beyond reach of its plane
+        const double out_by = std::max({sc.e[0].w() - sc.e[0].dot(x), sc.e[1].w() - sc.e[1].dot(x),
+                                        sc.e[2].w() - sc.e[2].dot(x)});
+        if (out_by <= 0) {
+          out.push_back(static_cast<std::uint32_t>(t));
+          continue;
+        }
+        if (out_by * out_by + h * h >= r2) continue;
+        const auto& f = faces_[static_cast<std::size_t>(t)];
         const TrianglePoint tp = closest_point_on_triangle(x, vertices_[f[0]], vertices_[f[1]], vertices_[f[2]]);
         if ((x - tp.point).squaredNorm() < r2) out.push_back(static_cast<std::uint32_t>(t));
       }

@@ -94,14 +94,14 @@ class MeshSurface {
     int hit = -1;
     bool inside = false;
     for (const auto t : tris) {
-      const auto& f = faces_[t];
-      const double h = normal_[t].dot(x - vertices_[f[0]]);
-      if (h * h >= r2) continue;  // its plane is beyond the radius
+      const Screen& sc = screen_[t];
+      const double h = sc.n.dot(x) - sc.off;  // signed distance from its plane
+      if (h * h >= r2) continue;             // its plane is beyond the radius
       // The distances of x from the lines of the three edges, in the plane
       // (positive inside): all positive, x is over the face; the largest
       // outside bounds the distance from the triangle from below.
-      const auto& e = edge_plane_[t];
-      const double s0 = e[0].dot(x) - e[0].w(), s1 = e[1].dot(x) - e[1].w(), s2 = e[2].dot(x) - e[2].w();
+      const double s0 = sc.e[0].dot(x) - sc.e[0].w(), s1 = sc.e[1].dot(x) - sc.e[1].w(),
+                   s2 = sc.e[2].dot(x) - sc.e[2].w();
       const double out_by = std::max({-s0, -s1, -s2});
       if (out_by > 0 && out_by * out_by + h * h >= r2) continue;
       if (hit >= 0) return resolve_sphere(x, r, tris, out, max);  // several: the full rule
@@ -111,7 +111,7 @@ class MeshSurface {
     if (hit < 0) return 0;
     if (!inside || max < 1) return resolve_sphere(x, r, tris, out, max);
     face_contact(x, r, hit, out[0]);
-    return 1;
+    return out[0].depth > 0 ? 1 : 0;  // the screen's plane offset rounds differently: a graze at r is none
   }
   /// The contact of sphere (x, r) with the face of triangle t: the plane's,
   /// as a plane wall computes it (normal towards the centre unless
@@ -131,7 +131,7 @@ class MeshSurface {
     int first = 0, count = 0;  // a leaf's triangles: order_[first, first + count)
     int left = -1, right = -1; // an inner node's children (count = 0)
   };
-  int build(int begin, int end, const std::vector<Vec3>& centroid);
+  int build(int begin, int end, const std::vector<Vec3>& centroid, int depth);
   int resolve_sphere(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out, int max) const;
   static std::span<const int> csr(const std::vector<int>& start, const std::vector<int>& items, int k) {
     const auto b = static_cast<std::size_t>(start[static_cast<std::size_t>(k)]);
@@ -148,7 +148,14 @@ class MeshSurface {
     double dot(const Vec3& x) const { return m.dot(x); }
     double w() const { return off; }
   };
-  std::vector<std::array<EdgePlane, 3>> edge_plane_;
+  // What the common case reads of a triangle, in one place: its unit normal
+  // and plane offset, and its edges' in-plane normals and offsets.
+  struct alignas(64) Screen {
+    Vec3 n;
+    double off;
+    EdgePlane e[3];
+  };
+  std::vector<Screen> screen_;
   std::vector<std::array<int, 3>> face_edge_;    // edge k runs from corner k to corner k + 1
   std::vector<std::array<int, 2>> edge_vertex_;  // endpoints
   std::vector<int> edge_face_start_, edge_face_;       // faces of each edge (CSR)

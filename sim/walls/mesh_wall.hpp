@@ -192,12 +192,12 @@ struct MeshWall : WallCommon {
     if constexpr (Shapes) {
       if (p.shape[i] == kEllipsoid) {
         n = ellipsoid_contacts(p, i, tris, found);
-        emit_all(found, n, slots, emit);
+        if (n > 0) emit_all(found, n, slots, emit);
         return;
       }
     }
     n = std::min(surface->sphere_contacts(to_body(p.x[i]), p.radius[i], tris, found, kMaxFound), kMaxFound);
-    emit_all(found, n, slots, emit);
+    if (n > 0) emit_all(found, n, slots, emit);
   }
 
   bool touches(const Vec3& x, double r) const { return surface->distance(to_body(x), r) < r; }
@@ -234,6 +234,7 @@ struct MeshWall : WallCommon {
     const unsigned all = (1u << contacts_per_particle) - 1u;
     unsigned held = 0;  // the slots holding a contact (the mask after the tags)
     if constexpr (std::decay_t<Slots>::keeps_history()) held = slots.mask();
+    const unsigned held_before = held;
     for (int j = 0; j < n; ++j) {
       contact::ContactGeometry g;
       g.normal = moving ? Vec3(R * found[j].normal) : found[j].normal;
@@ -262,7 +263,8 @@ struct MeshWall : WallCommon {
       }
       emit(g, slot);
     }
-    if constexpr (std::decay_t<Slots>::keeps_history()) slots.set_mask(held);
+    if constexpr (std::decay_t<Slots>::keeps_history())
+      if (held != held_before) slots.set_mask(held);
   }
 };
 

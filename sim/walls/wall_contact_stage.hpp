@@ -13,6 +13,8 @@
 // wall's force and torque are summed (per thread, then in thread order).
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <span>
 
 #include <omp.h>
 
@@ -106,14 +108,23 @@ class WallStage final : public Stage {
         point = wall.position();
       partial_.assign(threads ? static_cast<std::size_t>(omp_get_max_threads()) : 1, WallLoad{});
     }
+    // The fields' addresses, read once (the contacts call functions the
+    // compiler cannot see through, after which it would read them again).
+    double* const hist0 = H > 0 ? p.wall_history.data() + wall.history_slot * H : nullptr;
+    double* const tags0 = Tagged ? p.wall_tags.data() + wall.tag_offset : nullptr;
+    const std::uint32_t* const item = items.items.data();
+    const std::uint32_t* const item_start = items.start.size() > near.size() ? items.start.data() : nullptr;
     // Each particle appears once per wall: rows are independent.
     parallel_for(threads, nn, [&](std::ptrdiff_t m) {
       const std::size_t i = near[static_cast<std::size_t>(m)];
-      double* hist = H > 0 ? p.wall_history.data() + i * WH + wall.history_slot * H : nullptr;
-      double* tags = Tagged ? p.wall_tags.data() + i * WT + wall.tag_offset : nullptr;
+      double* hist = H > 0 ? hist0 + i * static_cast<std::size_t>(WH) : nullptr;
+      double* tags = Tagged ? tags0 + i * static_cast<std::size_t>(WT) : nullptr;
       const WallSlots<H, Tagged> sl{hist, tags, slots};
       unsigned used = 0;  // the slots a contact used this step
-      wall.template contacts<Shapes>(p, i, items.row(static_cast<std::size_t>(m)), sl,
+      const std::span<const std::uint32_t> row =
+          item_start ? std::span<const std::uint32_t>(item + item_start[m], item + item_start[m + 1])
+                     : std::span<const std::uint32_t>();
+      wall.template contacts<Shapes>(p, i, row, sl,
                                      [&](const contact::ContactGeometry& g, int slot) {
         [[maybe_unused]] std::array<double, Tagged ? H : 1> spare;  // a contact beyond the slots: no history
         double* h = nullptr;

@@ -591,7 +591,42 @@ TEST(MeshWall, SurfaceMemoryPerTriangle) {
   const MeshSurface s(m.v, m.f, false);
   const double per = static_cast<double>(s.bytes()) / static_cast<double>(s.triangles());
   std::cout << s.triangles() << " triangles: " << s.bytes() / 1e6 << " MB, " << per << " bytes per triangle\n";
-  EXPECT_LT(per, 400.0);  // measured 2026-11-26: 355 (leaves of 2 triangles, the edges' in-plane normals)
+  EXPECT_LT(per, 400.0);  // measured 2026-11-26: 355 (leaves of 2 triangles); 280 (packed screens, leaves of 8)
+}
+
+TEST(MeshSurfaceSearch, NearFindsExactlyTheTrianglesWithinReach) {
+  // The hierarchy splits at the middle of the centroids' extent (the median
+  // below depth 32): a mesh of far-apart parts, and one whose triangles
+  // crowd geometrically towards a point (each split leaves one side nearly
+  // empty: the depth cap), against the exact distance of every triangle.
+  Tri parts = grid(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 3, 3);
+  parts.add(grid(Vec3(40, 0, 0), Vec3(2, 0, 0), Vec3(0, 0, 2), 60, 60));
+  Tri crowd;
+  for (int k = 0; k < 200; ++k) {
+    const double a = std::pow(0.8, k), b = 0.9 * a;
+    const int n = static_cast<int>(crowd.v.size());
+    crowd.v.insert(crowd.v.end(), {Vec3(b, 0, 0), Vec3(a, 0, 0), Vec3(a, b, 0.1 * a)});
+    crowd.f.push_back({n, n + 1, n + 2});
+  }
+  std::mt19937 rng(7);
+  for (const Tri* m : {&parts, &crowd}) {
+    const MeshSurface s(m->v, m->f, false);
+    const Vec3 lo = s.bbox_min() - Vec3::Constant(1), hi = s.bbox_max() + Vec3::Constant(1);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int q = 0; q < 400; ++q) {
+      Vec3 x;
+      for (int k = 0; k < 3; ++k) x[k] = lo[k] + (hi[k] - lo[k]) * (q % 2 ? std::pow(u(rng), 8) : u(rng));
+      const double reach = q % 3 == 0 ? 0.05 : 1.5 * u(rng);
+      std::vector<std::uint32_t> got, want;
+      s.near(x, reach, got);
+      for (std::size_t t = 0; t < m->f.size(); ++t) {
+        const auto& f = m->f[t];
+        const auto tp = contact::closest_point_on_triangle(x, m->v[f[0]], m->v[f[1]], m->v[f[2]]);
+        if ((x - tp.point).norm() < reach) want.push_back(static_cast<std::uint32_t>(t));
+      }
+      EXPECT_EQ(got, want) << "query " << q << " at " << x.transpose() << ", reach " << reach;
+    }
+  }
 }
 
 }  // namespace
