@@ -26,6 +26,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "io/output/mass_output.hpp"
+#include "postprocess/frame.hpp"
 #include "postprocess/packing_fraction.hpp"
 #include "sim/integrate/radius_growth.hpp"
 #include "tests/support/sim_helpers.hpp"
@@ -149,6 +150,16 @@ inline LineFit fit_line(const std::vector<double>& x, const std::vector<double>&
 
 inline void run_steps(io::Simulation& s, std::int64_t until_step) {
   while (s.scene.clock.step < until_step) s.pipeline.step(s.scene);
+}
+
+/// The owned spheres of the scene now as a postprocess frame (centres, radii, time).
+inline postprocess::Frame sphere_frame(const sim::Scene& sc) {
+  postprocess::Frame f;
+  const auto& p = sc.particles;
+  f.x.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(p.n_owned()));
+  f.radius.assign(p.radius.begin(), p.radius.begin() + static_cast<std::ptrdiff_t>(p.n_owned()));
+  f.time = sc.clock.time;
+  return f;
 }
 
 inline double mean_speed(const sim::Scene& sc) {

@@ -32,11 +32,7 @@ TEST(DrumCalibration, DynamicAngleOfReposeMatchesTheExperiment) {
   while (sc.clock.step < sc.clock.n_steps) {
     s.pipeline.step(sc);
     if (sc.clock.time < 2.5 || sc.clock.step % every != 0) continue;
-    postprocess::Frame f;
-    const auto& p = sc.particles;
-    f.x.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(p.n_owned()));
-    f.radius.assign(p.radius.begin(), p.radius.begin() + static_cast<std::ptrdiff_t>(p.n_owned()));
-    f.time = sc.clock.time;
+    const postprocess::Frame f = sphere_frame(sc);
     const auto a = postprocess::surface_angle(f, opt);
     // Turning right-handed about +y, the drum's bottom moves towards -x and
     // carries the bed up on that side.

@@ -36,11 +36,7 @@ Drum spin(double mu) {
   while (sc.clock.step < sc.clock.n_steps) {
     s.pipeline.step(sc);
     if (sc.clock.time < 1.5 || sc.clock.step % every != 0) continue;
-    postprocess::Frame f;
-    const auto& p = sc.particles;
-    f.x.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(p.n_owned()));
-    f.radius.assign(p.radius.begin(), p.radius.begin() + static_cast<std::ptrdiff_t>(p.n_owned()));
-    f.time = sc.clock.time;
+    const postprocess::Frame f = sphere_frame(sc);
     const auto a = postprocess::surface_angle(f, opt);
     d.angle.push_back(a.angle_deg);
     d.residual.push_back(a.rms_residual);
