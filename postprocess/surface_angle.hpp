@@ -20,7 +20,8 @@
 //
 // Near the end walls (`near_ends` e > 0): only the particles whose centres
 // lie within e of either end of the bed along the axis (the frame's smallest
-// and largest particle extent along it) make the columns: the surface an
+// and largest particle extent along it: a grain that has left the drum moves
+// them) make the columns: the surface an
 // experiment films through a transparent end plate, steeper than the
 // middle's where the end walls' friction holds the bed up.
 //

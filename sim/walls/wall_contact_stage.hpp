@@ -110,8 +110,9 @@ class WallStage final : public Stage {
     }
     // The fields' addresses, read once (the contacts call functions the
     // compiler cannot see through, after which it would read them again).
-    double* const hist0 = H > 0 ? p.wall_history.data() + wall.history_slot * H : nullptr;
-    double* const tags0 = Tagged ? p.wall_tags.data() + wall.tag_offset : nullptr;
+    // (None without rows: the fields may be empty, their data() null.)
+    double* const hist0 = H > 0 && nn > 0 ? p.wall_history.data() + wall.history_slot * H : nullptr;
+    double* const tags0 = Tagged && nn > 0 ? p.wall_tags.data() + wall.tag_offset : nullptr;
     const std::uint32_t* const item = items.items.data();
     const std::uint32_t* const item_start = items.start.size() > near.size() ? items.start.data() : nullptr;
     // Each particle appears once per wall: rows are independent.
@@ -147,7 +148,7 @@ class WallStage final : public Stage {
         }
       });
       if constexpr (H > 0) {
-        if (slots == 1) {  // most walls: one fill of known size
+        if (!Tagged && slots == 1) {  // most walls: one fill of known size
           if (used == 0) std::fill_n(hist, H, 0.0);
         } else if constexpr (Tagged) {  // only the slots just left are cleared
           const unsigned held = sl.mask();

@@ -5,8 +5,8 @@
 // Lethe (e = 0.9, sliding friction 0.3, rolling friction 0.02, grains and
 // drum alike). The angle, measured as `grains repose` does on the bed's
 // surface next to the end walls (where the experiment films it), averaged
-// over the frames of t = 2.5-5 s (1.2 revolutions after the drum reached full
-// speed), must match the experiment's 26 degrees within the band of
+// over the frames of t = 2.5-5 s (the drum at full speed from 0.8 s: from
+// 0.6 to 1.5 revolutions after it), must match the experiment's 26 degrees within the band of
 // packing_references.yaml drum_calibration_angle.
 #include <gtest/gtest.h>
 

@@ -145,6 +145,8 @@ TEST(MeshHopper, FlatBottomFollowsBeverlooAndTheConeDischargesFaster) {
   EXPECT_GE(flat.points_creep, 4u);  // rings between the rim and the wall with flowing grains (of 6)
   EXPECT_GE(flat.points_flow, 4u);
   EXPECT_LT(flat.beta_creep, flat.beta_flow);
+  // The upper bound is the one with teeth: F_lo (about 1.05) lies below the
+  // band's 1.1, and is 1 once beta_flow reaches 60 degrees.
   EXPECT_GE(ratio, F_lo) << "the cone discharges slower than Rose & Tanaka's factor with the flat bin's dead zone";
   EXPECT_LE(ratio, F_hi) << "the cone discharges faster than Rose & Tanaka's factor with the flat bin's dead zone";
   record("mesh_hopper", Record().num("W_flat", flat.W).num("W_30", cone.W).num("phi_b", flat.phi_b).num("C", C)

@@ -594,6 +594,49 @@ TEST(MeshWall, SurfaceMemoryPerTriangle) {
   EXPECT_LT(per, 400.0);  // measured 2026-11-26: 355 (leaves of 2 triangles); 280 (packed screens, leaves of 8)
 }
 
+TEST(MeshWall, OneSlotIsFreedWhenItsContactEnds) {
+  // contacts_per_particle: 1. A sphere bounces off a triangulated floor, flies
+  // and strikes a triangulated side wall: in flight its slot is free (no mask,
+  // no normal, no spring), and the wall's contact takes it (its normal the
+  // wall's) instead of finding it held by the floor's and going without history.
+  Tri m = grid(Vec3(-0.01, -0.01, 0), Vec3(0.03, 0, 0), Vec3(0, 0.02, 0), 4, 4);
+  m.add(grid(Vec3(0.01, -0.01, 0), Vec3(0, 0.02, 0), Vec3(0, 0, 0.02), 2, 2));
+  const fs::path off = scratch("floor_and_side.off");
+  write_off(off, m);
+  auto s = from_yaml("domain: {min: [-0.011, -0.011, -0.001], max: [0.021, 0.011, 0.021]}\nmaterials:\n" +
+                     material("m", 2500, 1e7, 0.3, 0.9, 0.5) + "particles:\n" +
+                     single("b", "m", Vec3(0, 0, 0.0013), 0.001, Vec3(0.3, 0, -0.1)) +
+                     "walls:\n  - {type: mesh, file: " + off.string() +
+                     ", material: m, contacts_per_particle: 1}\ntime: {dt_rayleigh: 0.1, end: 0.05}\n");
+  auto& sc = s.scene;
+  s.pipeline.initialize(sc);
+  const auto& p = sc.particles;
+  ASSERT_EQ(p.wall_tag_size(), 4);  // one slot's normal and the mask
+  bool floor = false, flight = false, side = false;
+  while (sc.clock.step < sc.clock.n_steps && !side) {
+    s.pipeline.step(sc);
+    const double* tag = p.wall_tags.data();
+    const double* hist = p.wall_history.data();
+    const double x = p.x[0].x(), z = p.x[0].z();
+    if (z < 0.001) {  // on the floor
+      floor = true;
+      EXPECT_EQ(tag[3], 1.0);
+      EXPECT_NEAR(tag[2], 1.0, 1e-12);
+    } else if (floor && x < 0.009 && z > 0.0011) {  // in flight
+      flight = true;
+      EXPECT_EQ(tag[3], 0.0) << "t = " << sc.clock.time;
+      EXPECT_EQ(Vec3(tag[0], tag[1], tag[2]), Vec3::Zero());
+      EXPECT_EQ(Vec3(hist[0], hist[1], hist[2]), Vec3::Zero());
+    } else if (x > 0.009) {  // against the side
+      side = true;
+      EXPECT_EQ(tag[3], 1.0);
+      EXPECT_NEAR(tag[0], -1.0, 1e-12);
+      EXPECT_NE(Vec3(hist[0], hist[1], hist[2]), Vec3::Zero()) << "the side's contact has its spring";
+    }
+  }
+  EXPECT_TRUE(floor && flight && side);
+}
+
 TEST(MeshSurfaceSearch, NearFindsExactlyTheTrianglesWithinReach) {
   // The hierarchy splits at the middle of the centroids' extent (the median
   // below depth 32): a mesh of far-apart parts, and one whose triangles
