@@ -118,6 +118,16 @@ class WallStage final : public Stage {
     // Each particle appears once per wall: rows are independent.
     parallel_for(threads, nn, [&](std::ptrdiff_t m) {
       const std::size_t i = near[static_cast<std::size_t>(m)];
+      if constexpr (H > 0) {  // a few rows ahead: the rows' particles are scattered
+        if (m + 8 < nn) {
+          const std::size_t ia = near[static_cast<std::size_t>(m + 8)];
+          __builtin_prefetch(hist0 + ia * static_cast<std::size_t>(WH));
+          if constexpr (Tagged) {  // the normals, and the mask after them
+            __builtin_prefetch(tags0 + ia * static_cast<std::size_t>(WT));
+            __builtin_prefetch(tags0 + ia * static_cast<std::size_t>(WT) + 3 * slots);
+          }
+        }
+      }
       double* hist = H > 0 ? hist0 + i * static_cast<std::size_t>(WH) : nullptr;
       double* tags = Tagged ? tags0 + i * static_cast<std::size_t>(WT) : nullptr;
       const WallSlots<H, Tagged> sl{hist, tags, slots};
