@@ -10,7 +10,11 @@ closes it while the hopper fills (case.yaml slides it away).
     python3 make_hopper.py [theta_deg] [r0] [R] [H] [segments]   (default 30 0.003 0.01 0.03 64)
 """
 import math
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import stl  # noqa: E402  (cases/stl.py)
 
 args = [float(a) for a in sys.argv[1:]]
 theta = math.radians(args[0] if len(args) > 0 else 30.0)
@@ -33,18 +37,7 @@ for (ra, za), (rb, zb) in zip(rings, rings[1:]):
         c, d = point(rb, zb, k + 1), point(rb, zb, k)
         tris += [(a, c, b), (a, d, c)]  # wound with the normal towards the axis
 
-with open("hopper.stl", "w") as f:
-    f.write("solid hopper\n")
-    for t in tris:
-        u = [t[1][i] - t[0][i] for i in range(3)]
-        v = [t[2][i] - t[0][i] for i in range(3)]
-        n = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
-        s = math.sqrt(sum(x * x for x in n))
-        f.write("  facet normal %.9g %.9g %.9g\n    outer loop\n" % tuple(x / s for x in n))
-        for p in t:
-            f.write("      vertex %.12g %.12g %.12g\n" % p)
-        f.write("    endloop\n  endfacet\n")
-    f.write("endsolid hopper\n")
+stl.write_ascii("hopper.stl", tris, "hopper")
 
 g = 1.5 * r0 + 0.001  # half-width of the gate
 z = -0.0001

@@ -11,7 +11,11 @@
     python3 make_mixer.py [R H b h pitch]   (default 0.03 0.05 0.024 0.008 45)
 """
 import math
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import stl  # noqa: E402  (cases/stl.py)
 
 a = [float(x) for x in sys.argv[1:]]
 R = a[0] if len(a) > 0 else 0.03
@@ -20,20 +24,6 @@ b = a[2] if len(a) > 2 else 0.024
 h = a[3] if len(a) > 3 else 0.008
 pitch = math.radians(a[4] if len(a) > 4 else 45.0)
 s, z0, N = 0.003, 0.003, 64
-
-def write(path, tris, name):
-    with open(path, "w") as f:
-        f.write("solid %s\n" % name)
-        for t in tris:
-            u = [t[1][i] - t[0][i] for i in range(3)]
-            v = [t[2][i] - t[0][i] for i in range(3)]
-            n = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
-            l = math.sqrt(sum(x * x for x in n))
-            f.write("  facet normal %.9g %.9g %.9g\n    outer loop\n" % tuple(x / l for x in n))
-            for p in t:
-                f.write("      vertex %.12g %.12g %.12g\n" % p)
-            f.write("    endloop\n  endfacet\n")
-        f.write("endsolid %s\n" % name)
 
 # The vessel: side in 4 rings, bottom as a fan about the axis.
 ring = lambda r, z: [(r * math.cos(2 * math.pi * k / N), r * math.sin(2 * math.pi * k / N), z) for k in range(N)]
@@ -47,7 +37,7 @@ for za, zb in zip(zs, zs[1:]):
 bottom = ring(R, 0.0)
 for k in range(N):
     tris.append(((0.0, 0.0, 0.0), bottom[(k + 1) % N], bottom[k]))
-write("vessel.stl", tris, "vessel")
+stl.write_ascii("vessel.stl", tris, "vessel")
 
 # The paddle: each blade a rectangle from radius s to b, pitched about its radial line.
 tris = []
@@ -66,5 +56,5 @@ for k in range(4):
     (x0, y0), (x1, y1) = sq[k], sq[(k + 1) % 4]
     top = z0 + h * math.cos(pitch) + 0.0018
     tris += [((x0, y0, z0), (x1, y1, z0), (x1, y1, top)), ((x0, y0, z0), (x1, y1, top), (x0, y0, top))]
-write("blade.stl", tris, "blade")
+stl.write_ascii("blade.stl", tris, "blade")
 print("vessel.stl and blade.stl written")

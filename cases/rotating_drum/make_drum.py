@@ -6,8 +6,11 @@ centre at the origin, faces wound counter-clockwise seen from outside.
     python3 make_drum.py [radius] [length] [segments]   (default 0.05 0.024 96)
 """
 import math
-import struct
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import stl  # noqa: E402  (cases/stl.py)
 
 R = float(sys.argv[1]) if len(sys.argv) > 1 else 0.05
 L = float(sys.argv[2]) if len(sys.argv) > 2 else 0.024
@@ -25,19 +28,5 @@ for k in range(N):
     tris += [(a[k], b[k2], a[k2]), (a[k], b[k], b[k2])]
     tris += [(c0, a[k], a[k2]), (c1, b[k2], b[k])]
 
-def normal(t):
-    u = [t[1][i] - t[0][i] for i in range(3)]
-    v = [t[2][i] - t[0][i] for i in range(3)]
-    n = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
-    s = math.sqrt(sum(x * x for x in n))
-    return tuple(x / s for x in n)
-
-with open("drum.stl", "wb") as f:
-    f.write(b"grains rotating drum R=%g L=%g N=%d".ljust(80, b" "))
-    f.write(struct.pack("<I", len(tris)))
-    for t in tris:
-        f.write(struct.pack("<3f", *normal(t)))
-        for p in t:
-            f.write(struct.pack("<3f", *p))
-        f.write(b"\0\0")
+stl.write_binary("drum.stl", tris, b"grains rotating drum R=%g L=%g N=%d" % (R, L, N))
 print("drum.stl:", len(tris), "triangles")
