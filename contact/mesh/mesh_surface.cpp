@@ -47,7 +47,6 @@ void sort_by_depth(std::vector<MeshContact>& c) {
 MeshSurface::MeshSurface(std::vector<Vec3> vertices, std::vector<std::array<int, 3>> faces, bool one_sided)
     : vertices_(std::move(vertices)), faces_(std::move(faces)), one_sided_(one_sided) {
   const std::size_t nf = faces_.size(), nv = vertices_.size();
-  normal_.resize(nf);
   screen_.resize(nf);
   face_edge_.resize(nf);
   std::unordered_map<std::uint64_t, int> edge_id;
@@ -56,14 +55,14 @@ MeshSurface::MeshSurface(std::vector<Vec3> vertices, std::vector<std::array<int,
   for (std::size_t f = 0; f < nf; ++f) {
     const auto& t = faces_[f];
     const Vec3 n = (vertices_[t[1]] - vertices_[t[0]]).cross(vertices_[t[2]] - vertices_[t[0]]);
-    normal_[f] = n.norm() > 0 ? Vec3(n.normalized()) : Vec3(0, 0, 1);
+    Screen& sc = screen_[f];
+    sc.n = n.norm() > 0 ? Vec3(n.normalized()) : Vec3(0, 0, 1);
+    sc.off = sc.n.dot(vertices_[t[0]]);
     for (int k = 0; k < 3; ++k) {
       const Vec3& a = vertices_[t[k]];
-      const Vec3 m = normal_[f].cross(vertices_[t[(k + 1) % 3]] - a).normalized();  // counter-clockwise: inwards
-      screen_[f].e[k] = {m, m.dot(a)};
+      const Vec3 m = sc.n.cross(vertices_[t[(k + 1) % 3]] - a).normalized();  // counter-clockwise: inwards
+      sc.e[k] = {m, m.dot(a)};
     }
-    screen_[f].n = normal_[f];
-    screen_[f].off = normal_[f].dot(vertices_[t[0]]);
     for (int k = 0; k < 3; ++k) {
       const int a = t[k], b = t[(k + 1) % 3];
       const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::uint32_t(std::max(a, b));
@@ -148,7 +147,7 @@ int MeshSurface::build(int begin, int end, const std::vector<Vec3>& centroid, in
 
 std::size_t MeshSurface::bytes() const {
   return vertices_.capacity() * sizeof(Vec3) + faces_.capacity() * sizeof(faces_[0]) +
-         normal_.capacity() * sizeof(Vec3) + screen_.capacity() * sizeof(Screen) +
+         screen_.capacity() * sizeof(Screen) +
          face_edge_.capacity() * sizeof(face_edge_[0]) +
          edge_vertex_.capacity() * sizeof(edge_vertex_[0]) +
          (edge_face_start_.capacity() + edge_face_.capacity() + vertex_face_start_.capacity() +
@@ -224,7 +223,7 @@ int MeshSurface::resolve_sphere(const Vec3& x, double r, std::span<const std::ui
   for (const auto t : tris) {
     const auto& f = faces_[t];
     const Vec3& a = vertices_[f[0]];
-    const double h = normal_[t].dot(x - a);
+    const double h = screen_[t].n.dot(x - a);
     if (h * h >= r2) continue;  // its plane is beyond the radius
     const TrianglePoint tp = closest_point_on_triangle(x, a, vertices_[f[1]], vertices_[f[2]]);
     const double d2 = (x - tp.point).squaredNorm();
@@ -242,10 +241,10 @@ int MeshSurface::resolve_sphere(const Vec3& x, double r, std::span<const std::ui
   auto towards = [&](const Candidate& c) {  // unit normal from the point to the centre
     const double d = std::sqrt(c.d2);
     if (d > tol) return Vec3((x - c.q) / d);
-    const Vec3& n = normal_[static_cast<std::size_t>(c.t)];  // the centre on the surface
+    const Vec3& n = screen_[static_cast<std::size_t>(c.t)].n;  // the centre on the surface
     return n.dot(x - vertices_[faces_[static_cast<std::size_t>(c.t)][0]]) >= 0 || one_sided_ ? n : Vec3(-n);
   };
-  auto in_front = [&](int t, const Vec3& q) { return normal_[static_cast<std::size_t>(t)].dot(x - q) >= 0; };
+  auto in_front = [&](int t, const Vec3& q) { return screen_[static_cast<std::size_t>(t)].n.dot(x - q) >= 0; };
 
   // Faces.
   // Faces: the plane's contact, as a plane wall computes it (normal, the

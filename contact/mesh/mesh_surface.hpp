@@ -61,7 +61,7 @@ class MeshSurface {
   std::size_t edges() const { return edge_vertex_.size(); }
   const std::vector<Vec3>& vertices() const { return vertices_; }
   const std::vector<std::array<int, 3>>& faces() const { return faces_; }
-  const Vec3& face_normal(int t) const { return normal_[static_cast<std::size_t>(t)]; }
+  const Vec3& face_normal(int t) const { return screen_[static_cast<std::size_t>(t)].n; }
   bool one_sided() const { return one_sided_; }
   Vec3 bbox_min() const { return lo_; }
   Vec3 bbox_max() const { return hi_; }
@@ -118,7 +118,7 @@ class MeshSurface {
   /// one-sided, the centre's distance, its foot).
   GRAINS_INLINE void face_contact(const Vec3& x, double r, int t, MeshContact& out) const {
     const auto k = static_cast<std::size_t>(t);
-    const Vec3& n0 = normal_[k];
+    const Vec3& n0 = screen_[k].n;
     const Vec3& a = vertices_[faces_[k][0]];
     const Vec3 n = one_sided_ || n0.dot(x - a) >= 0 ? n0 : Vec3(-n0);
     const double s = n.dot(x - a);
@@ -141,15 +141,15 @@ class MeshSurface {
 
   std::vector<Vec3> vertices_;
   std::vector<std::array<int, 3>> faces_;
-  std::vector<Vec3> normal_;                     // unit, counter-clockwise
   struct EdgePlane {                             // unit in-plane normal of an edge, into the face, and its offset
     Vec3 m;
     double off;
     double dot(const Vec3& x) const { return m.dot(x); }
     double w() const { return off; }
   };
-  // What the common case reads of a triangle, in one place: its unit normal
-  // and plane offset, and its edges' in-plane normals and offsets.
+  // A triangle's planes, in one place (what the common case reads): its unit
+  // normal (counter-clockwise) and plane offset, and its edges' in-plane
+  // normals and offsets.
   struct alignas(64) Screen {
     Vec3 n;
     double off;

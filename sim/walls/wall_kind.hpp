@@ -75,10 +75,6 @@ struct WallSurface {
 struct NearItems {
   std::vector<std::uint32_t> start{0};
   std::vector<std::uint32_t> items;
-  std::span<const std::uint32_t> row(std::size_t m) const {
-    if (m + 1 >= start.size()) return {};
-    return {items.data() + start[m], items.data() + start[m + 1]};
-  }
   bool operator==(const NearItems&) const = default;
 };
 
