@@ -90,8 +90,20 @@ class MeshSurface {
   /// settled here, inline; the rest in resolve_sphere.
   GRAINS_INLINE int sphere_contacts(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out,
                                     int max) const {
+    const int t = sphere_screen(x, r, tris);
+    if (t == kNone) return 0;
+    if (t < 0 || max < 1) return resolve_sphere(x, r, tris, out, max);
+    face_contact(x, r, t, out[0]);
+    return out[0].depth > 0 ? 1 : 0;  // the screen's plane offset rounds differently: a graze at r is none
+  }
+  static constexpr int kNone = -1, kResolve = -2;
+  /// The screen of sphere_contacts: kNone when no triangle of `tris` is
+  /// within r of x; the triangle when exactly one is and x is over its face
+  /// (its contact is the face's, face_contact); kResolve otherwise (several
+  /// triangles, or an edge or a vertex: resolve_sphere decides).
+  GRAINS_INLINE int sphere_screen(const Vec3& x, double r, std::span<const std::uint32_t> tris) const {
     const double r2 = r * r;
-    int hit = -1;
+    int hit = kNone;
     bool inside = false;
     for (const auto t : tris) {
       const Screen& sc = screen_[t];
@@ -104,24 +116,31 @@ class MeshSurface {
                    s2 = sc.e[2].dot(x) - sc.e[2].w();
       const double out_by = std::max({-s0, -s1, -s2});
       if (out_by > 0 && out_by * out_by + h * h >= r2) continue;
-      if (hit >= 0) return resolve_sphere(x, r, tris, out, max);  // several: the full rule
+      if (hit >= 0) return kResolve;  // several: the full rule
       hit = static_cast<int>(t);
       inside = out_by < 0;
     }
-    if (hit < 0) return 0;
-    if (!inside || max < 1) return resolve_sphere(x, r, tris, out, max);
-    face_contact(x, r, hit, out[0]);
-    return out[0].depth > 0 ? 1 : 0;  // the screen's plane offset rounds differently: a graze at r is none
+    return hit >= 0 && !inside ? kResolve : hit;
+  }
+  /// The contacts of sphere (x, r) with `tris` by the full rule (faces,
+  /// edges, vertices), as sphere_contacts returns them.
+  int resolve_sphere(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out, int max) const;
+  /// The face contact of face_contact as a normal n (towards x unless
+  /// one-sided) and the centre's distance s along it: the foot is x - n s.
+  GRAINS_INLINE void face_normal(const Vec3& x, int t, Vec3& n, double& s) const {
+    const auto k = static_cast<std::size_t>(t);
+    const Vec3& n0 = screen_[k].n;
+    const Vec3& a = vertices_[faces_[k][0]];
+    n = one_sided_ || n0.dot(x - a) >= 0 ? n0 : Vec3(-n0);
+    s = n.dot(x - a);
   }
   /// The contact of sphere (x, r) with the face of triangle t: the plane's,
   /// as a plane wall computes it (normal towards the centre unless
   /// one-sided, the centre's distance, its foot).
   GRAINS_INLINE void face_contact(const Vec3& x, double r, int t, MeshContact& out) const {
-    const auto k = static_cast<std::size_t>(t);
-    const Vec3& n0 = screen_[k].n;
-    const Vec3& a = vertices_[faces_[k][0]];
-    const Vec3 n = one_sided_ || n0.dot(x - a) >= 0 ? n0 : Vec3(-n0);
-    const double s = n.dot(x - a);
+    Vec3 n;
+    double s;
+    face_normal(x, t, n, s);
     out = {Vec3(x - n * s), n, r - s, r, t, 0};
   }
 
@@ -132,7 +151,6 @@ class MeshSurface {
     int left = -1, right = -1; // an inner node's children (count = 0)
   };
   int build(int begin, int end, const std::vector<Vec3>& centroid, int depth);
-  int resolve_sphere(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out, int max) const;
   static std::span<const int> csr(const std::vector<int>& start, const std::vector<int>& items, int k) {
     const auto b = static_cast<std::size_t>(start[static_cast<std::size_t>(k)]);
     const auto e = static_cast<std::size_t>(start[static_cast<std::size_t>(k) + 1]);

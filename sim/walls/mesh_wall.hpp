@@ -196,7 +196,26 @@ struct MeshWall : WallCommon {
         return;
       }
     }
-    n = std::min(surface->sphere_contacts(to_body(p.x[i]), p.radius[i], tris, found, kMaxFound), kMaxFound);
+    // Spheres: the common case, one triangle whose face the centre is over,
+    // straight to the contact (what sphere_contacts computes for it).
+    const Vec3 x = to_body(p.x[i]);
+    const double r = p.radius[i];
+    const int t = surface->sphere_screen(x, r, tris);
+    if (t == contact::MeshSurface::kNone) return;
+    if (t >= 0) {
+      Vec3 nb;
+      double s;
+      surface->face_normal(x, t, nb, s);
+      if (!(r - s > 0)) return;  // a graze at r (the screen's plane offset rounds differently) is none
+      contact::ContactGeometry g;
+      g.normal = moving ? Vec3(R * nb) : nb;
+      g.point = moving ? Vec3(R * Vec3(x - nb * s) + T) : Vec3(x - nb * s);
+      g.overlap = r - s;
+      g.radius = r;
+      emit_one(g, slots, emit);
+      return;
+    }
+    n = std::min(surface->resolve_sphere(x, r, tris, found, kMaxFound), kMaxFound);
     if (n > 0) emit_all(found, n, slots, emit);
   }
 
@@ -227,6 +246,42 @@ struct MeshWall : WallCommon {
  private:
   int ellipsoid_contacts(const ParticleStore& p, std::size_t i, std::span<const std::uint32_t> tris,
                          contact::MeshContact* out) const;
+
+  // One contact: the slot emit_all would give it (the held slot whose
+  // normal is nearest within 60 degrees, else the first free one), without
+  // its loops for the usual single held slot.
+  template <class Slots, class Emit>
+  GRAINS_INLINE void emit_one(const contact::ContactGeometry& g, Slots& slots, Emit& emit) const {
+    int slot = -1;
+    if constexpr (std::decay_t<Slots>::keeps_history()) {
+      const unsigned held = slots.mask();
+      if (held != 0 && (held & (held - 1)) == 0) {
+        const int k = __builtin_ctz(held);
+        const double* t = slots.tag(k);
+        if (t[0] * g.normal.x() + t[1] * g.normal.y() + t[2] * g.normal.z() > 0.5) slot = k;
+      } else if (held != 0) {
+        double best = 0.5;
+        for (unsigned m = held; m != 0; m &= m - 1) {
+          const int k = __builtin_ctz(m);
+          const double* t = slots.tag(k);
+          const double c = t[0] * g.normal.x() + t[1] * g.normal.y() + t[2] * g.normal.z();
+          if (c > best) best = c, slot = k;
+        }
+      }
+      if (slot < 0) {
+        const unsigned free = ((1u << contacts_per_particle) - 1u) & ~held;
+        if (free != 0) {
+          slot = __builtin_ctz(free);
+          slots.set_mask(held | 1u << slot);
+        }
+      }
+      if (slot >= 0) {
+        double* t = slots.tag(slot);
+        t[0] = g.normal.x(), t[1] = g.normal.y(), t[2] = g.normal.z();
+      }
+    }
+    emit(g, slot);
+  }
 
   template <class Slots, class Emit>
   GRAINS_INLINE void emit_all(const contact::MeshContact* found, int n, Slots& slots, Emit& emit) const {
