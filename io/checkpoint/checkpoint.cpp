@@ -19,7 +19,9 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kFormat = "grains checkpoint";
-constexpr const char* kFormatVersion = "1";
+// 2: a mesh wall's block of wall_contact_normal holds its mask first, then
+// the slots' normals (version 1: the normals, then the mask).
+constexpr const char* kFormatVersion = "2";
 constexpr const char* kHistoryUnits = "m (tangential), N m (rolling)";
 
 void fsync_path(const fs::path& p, bool directory) {

@@ -222,7 +222,7 @@ Scene build_scene(SceneConfig& c) {
     slot += w.history_slots;
     if constexpr (std::decay_t<decltype(w)>::tagged) {
       w.tag_offset = tag;
-      tag += 3 * w.history_slots + 1;  // a normal per slot, and the mask of the slots held
+      tag += 1 + 3 * w.history_slots;  // the mask of the slots held, and a normal per slot
     }
     if constexpr (requires { w.place(0.0); }) w.place(w.motion_time);  // its pose and velocities now
   });

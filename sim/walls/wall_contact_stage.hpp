@@ -52,7 +52,7 @@ struct WallContact {
 template <int H, bool Tagged>
 struct WallSlots {
   double* hist;  // H doubles per slot (null when H = 0)
-  double* tags;  // tagged kinds with history: 3 doubles per slot, then the mask of the slots held
+  double* tags;  // tagged kinds with history: the mask of the slots held, then 3 doubles per slot
   int n = 1;     // slots
   static constexpr bool keeps_history() { return H > 0; }
   bool held(int k) const {
@@ -65,9 +65,10 @@ struct WallSlots {
       return std::any_of(hist + k * H, hist + (k + 1) * H, [](double v) { return v != 0.0; });
     }
   }
-  double* tag(int k) const { return tags + 3 * k; }
-  unsigned mask() const { return static_cast<unsigned>(tags[3 * n]); }
-  void set_mask(unsigned m) const { tags[3 * n] = static_cast<double>(m); }
+  // The mask first: a row with one contact reads one stretch (mask, its normal).
+  double* tag(int k) const { return tags + 1 + 3 * k; }
+  unsigned mask() const { return static_cast<unsigned>(tags[0]); }
+  void set_mask(unsigned m) const { tags[0] = static_cast<double>(m); }
 };
 
 template <class Law, bool Shapes = false>
@@ -122,10 +123,8 @@ class WallStage final : public Stage {
         if (m + 8 < nn) {
           const std::size_t ia = near[static_cast<std::size_t>(m + 8)];
           __builtin_prefetch(hist0 + ia * static_cast<std::size_t>(WH));
-          if constexpr (Tagged) {  // the normals, and the mask after them
-            __builtin_prefetch(tags0 + ia * static_cast<std::size_t>(WT));
-            __builtin_prefetch(tags0 + ia * static_cast<std::size_t>(WT) + 3 * slots);
-          }
+          if constexpr (Tagged)  // the mask and the first slot's normal
+            __builtin_prefetch(tags0 + ia * static_cast<std::size_t>(WT) + 3);
         }
       }
       double* hist = H > 0 ? hist0 + i * static_cast<std::size_t>(WH) : nullptr;
@@ -166,7 +165,7 @@ class WallStage final : public Stage {
             for (unsigned m = held & ~used; m != 0; m &= m - 1) {
               const int k = __builtin_ctz(m);
               std::fill_n(hist + k * H, H, 0.0);
-              std::fill_n(tags + 3 * k, 3, 0.0);
+              std::fill_n(sl.tag(k), 3, 0.0);
             }
             sl.set_mask(held & used);
           }

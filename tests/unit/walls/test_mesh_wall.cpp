@@ -611,7 +611,7 @@ TEST(MeshWall, OneSlotIsFreedWhenItsContactEnds) {
   auto& sc = s.scene;
   s.pipeline.initialize(sc);
   const auto& p = sc.particles;
-  ASSERT_EQ(p.wall_tag_size(), 4);  // one slot's normal and the mask
+  ASSERT_EQ(p.wall_tag_size(), 4);  // the mask and one slot's normal
   bool floor = false, flight = false, side = false;
   while (sc.clock.step < sc.clock.n_steps && !side) {
     s.pipeline.step(sc);
@@ -620,17 +620,17 @@ TEST(MeshWall, OneSlotIsFreedWhenItsContactEnds) {
     const double x = p.x[0].x(), z = p.x[0].z();
     if (z < 0.001) {  // on the floor
       floor = true;
-      EXPECT_EQ(tag[3], 1.0);
-      EXPECT_NEAR(tag[2], 1.0, 1e-12);
+      EXPECT_EQ(tag[0], 1.0);
+      EXPECT_NEAR(tag[3], 1.0, 1e-12);
     } else if (floor && x < 0.009 && z > 0.0011) {  // in flight
       flight = true;
-      EXPECT_EQ(tag[3], 0.0) << "t = " << sc.clock.time;
-      EXPECT_EQ(Vec3(tag[0], tag[1], tag[2]), Vec3::Zero());
+      EXPECT_EQ(tag[0], 0.0) << "t = " << sc.clock.time;
+      EXPECT_EQ(Vec3(tag[1], tag[2], tag[3]), Vec3::Zero());
       EXPECT_EQ(Vec3(hist[0], hist[1], hist[2]), Vec3::Zero());
     } else if (x > 0.009) {  // against the side
       side = true;
-      EXPECT_EQ(tag[3], 1.0);
-      EXPECT_NEAR(tag[0], -1.0, 1e-12);
+      EXPECT_EQ(tag[0], 1.0);
+      EXPECT_NEAR(tag[1], -1.0, 1e-12);
       EXPECT_NE(Vec3(hist[0], hist[1], hist[2]), Vec3::Zero()) << "the side's contact has its spring";
     }
   }
