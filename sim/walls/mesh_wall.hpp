@@ -247,38 +247,49 @@ struct MeshWall : WallCommon {
   int ellipsoid_contacts(const ParticleStore& p, std::size_t i, std::span<const std::uint32_t> tris,
                          contact::MeshContact* out) const;
 
-  // One contact: the slot emit_all would give it (the held slot whose
-  // normal is nearest within 60 degrees, else the first free one), without
-  // its loops for the usual single held slot.
+  // The slot of a contact with this normal: among the held slots not yet
+  // taken this step, the one whose contact's normal is nearest (within 60
+  // degrees), else the first free slot (added to held), else -1 (no
+  // history). Its tag takes the normal.
+  template <class Slots>
+  GRAINS_INLINE int take_slot(const Vec3& normal, const Slots& slots, unsigned& held, unsigned taken) const {
+    int slot = -1;
+    const unsigned cand = held & ~taken;
+    auto cosine = [&](int k) {
+      const double* t = slots.tag(k);
+      return t[0] * normal.x() + t[1] * normal.y() + t[2] * normal.z();
+    };
+    if (cand != 0 && (cand & (cand - 1)) == 0) {  // the usual case: one
+      const int k = __builtin_ctz(cand);
+      if (cosine(k) > 0.5) slot = k;
+    } else {
+      double best = 0.5;
+      for (unsigned m = cand; m != 0; m &= m - 1) {
+        const int k = __builtin_ctz(m);
+        const double c = cosine(k);
+        if (c > best) best = c, slot = k;
+      }
+    }
+    if (slot < 0) {
+      const unsigned free = ((1u << contacts_per_particle) - 1u) & ~(held | taken);
+      if (free == 0) return -1;
+      slot = __builtin_ctz(free);
+      held |= 1u << slot;
+    }
+    double* t = slots.tag(slot);
+    t[0] = normal.x(), t[1] = normal.y(), t[2] = normal.z();
+    return slot;
+  }
+
+  // One contact (the common case: no contact array).
   template <class Slots, class Emit>
   GRAINS_INLINE void emit_one(const contact::ContactGeometry& g, Slots& slots, Emit& emit) const {
     int slot = -1;
     if constexpr (std::decay_t<Slots>::keeps_history()) {
-      const unsigned held = slots.mask();
-      if (held != 0 && (held & (held - 1)) == 0) {
-        const int k = __builtin_ctz(held);
-        const double* t = slots.tag(k);
-        if (t[0] * g.normal.x() + t[1] * g.normal.y() + t[2] * g.normal.z() > 0.5) slot = k;
-      } else if (held != 0) {
-        double best = 0.5;
-        for (unsigned m = held; m != 0; m &= m - 1) {
-          const int k = __builtin_ctz(m);
-          const double* t = slots.tag(k);
-          const double c = t[0] * g.normal.x() + t[1] * g.normal.y() + t[2] * g.normal.z();
-          if (c > best) best = c, slot = k;
-        }
-      }
-      if (slot < 0) {
-        const unsigned free = ((1u << contacts_per_particle) - 1u) & ~held;
-        if (free != 0) {
-          slot = __builtin_ctz(free);
-          slots.set_mask(held | 1u << slot);
-        }
-      }
-      if (slot >= 0) {
-        double* t = slots.tag(slot);
-        t[0] = g.normal.x(), t[1] = g.normal.y(), t[2] = g.normal.z();
-      }
+      unsigned held = slots.mask();
+      const unsigned before = held;
+      slot = take_slot(g.normal, slots, held, 0u);
+      if (held != before) slots.set_mask(held);
     }
     emit(g, slot);
   }
@@ -286,8 +297,7 @@ struct MeshWall : WallCommon {
   template <class Slots, class Emit>
   GRAINS_INLINE void emit_all(const contact::MeshContact* found, int n, Slots& slots, Emit& emit) const {
     unsigned taken = 0;
-    const unsigned all = (1u << contacts_per_particle) - 1u;
-    unsigned held = 0;  // the slots holding a contact (the mask after the tags)
+    unsigned held = 0;  // the slots holding a contact (the mask before the tags)
     if constexpr (std::decay_t<Slots>::keeps_history()) held = slots.mask();
     const unsigned held_before = held;
     for (int j = 0; j < n; ++j) {
@@ -298,23 +308,8 @@ struct MeshWall : WallCommon {
       g.radius = found[j].radius;
       int slot = -1;
       if constexpr (std::decay_t<Slots>::keeps_history()) {
-        // The held slot whose contact's normal is nearest (within 60 degrees), else a free one.
-        double best = 0.5;
-        for (unsigned m = held & ~taken; m != 0; m &= m - 1) {
-          const int k = __builtin_ctz(m);
-          const double* t = slots.tag(k);
-          const double c = t[0] * g.normal.x() + t[1] * g.normal.y() + t[2] * g.normal.z();
-          if (c > best) best = c, slot = k;
-        }
-        if (slot < 0 && (all & ~(held | taken)) != 0) {
-          slot = __builtin_ctz(all & ~(held | taken));
-          held |= 1u << slot;
-        }
-        if (slot >= 0) {
-          taken |= 1u << slot;
-          double* t = slots.tag(slot);
-          t[0] = g.normal.x(), t[1] = g.normal.y(), t[2] = g.normal.z();
-        }
+        slot = take_slot(g.normal, slots, held, taken);
+        if (slot >= 0) taken |= 1u << slot;
       }
       emit(g, slot);
     }
