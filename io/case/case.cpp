@@ -97,6 +97,7 @@ class CaseParser {
     if (root["gravity"]) sc.gravity = v_.vec3(root, doc("case"), "gravity", "");
     parse_materials(root["materials"]);
     parse_contact(root["contact"]);
+    check_adhesion();
     parse_particles(root["particles"]);
     parse_walls(root["walls"]);
     parse_time(root["time"]);
@@ -164,6 +165,8 @@ class CaseParser {
       mat.friction = v_.number_or_default(m, d, "friction", ctx);
       mat.rolling_friction = v_.number_or_default(m, d, "rolling_friction", ctx);
       mat.cohesion = v_.number_or_default(m, d, "cohesion_energy_density", ctx);
+      mat.surface_energy = v_.number_or_default(m, d, "surface_energy", ctx);
+      if (mat.surface_energy > 0 && adhesion_where_.empty()) adhesion_where_ = v_.where(m["surface_energy"]);
       if (!m["name"]) continue;  // reported as a missing required key
       if (material_index_.count(mat.name)) v_.error(m["name"], ctx, "material '" + mat.name + "' is defined twice");
       material_index_[mat.name] = static_cast<int>(c_.scene.materials.size());
@@ -232,6 +235,22 @@ class CaseParser {
     });
   }
 
+  // Adhesion given to a normal law that has none is an error, not ignored.
+  void check_adhesion() {
+    if (adhesion_where_.empty()) return;
+    bool adhesive = false;
+    std::string laws;
+    sim::for_each_type(sim::NormalLaws{}, [&]<class N>() {
+      if (!sim::is_adhesive<N>()) return;
+      laws += std::string(laws.empty() ? "" : " or ") + N::name;
+      if (c_.scene.normal.name == N::name) adhesive = true;
+    });
+    if (!adhesive)
+      v_.error_at(adhesion_where_, "adhesion (surface_energy or work_of_adhesion > 0) needs an adhesive normal law, "
+                                   "contact.model: " + laws + "; model " + c_.scene.normal.name +
+                                   " has no adhesion and would ignore it");
+  }
+
   void parse_contact(const YAML::Node& n) {
     // The normal law's defaults apply whether or not the section is there.
     auto defaults = [&] {
@@ -287,6 +306,8 @@ class CaseParser {
       o.friction = v_.number(p, pd, "friction", ctx, -1);
       o.rolling_friction = v_.number(p, pd, "rolling_friction", ctx, -1);
       o.cohesion = v_.number(p, pd, "cohesion_energy_density", ctx, -1);
+      o.work_of_adhesion = v_.number(p, pd, "work_of_adhesion", ctx, -1);
+      if (o.work_of_adhesion > 0 && adhesion_where_.empty()) adhesion_where_ = v_.where(p["work_of_adhesion"]);
       parse_law_maps(p, ctx, o.normal);
       if (p[c_.scene.normal.name]) check_law_values(o.normal.over(c_.scene.normal.values), p[c_.scene.normal.name], ctx);
       c_.scene.overrides.push_back(o);
@@ -848,6 +869,7 @@ class CaseParser {
   Case& c_;
   Validator& v_;
   std::map<std::string, int> material_index_;
+  std::string adhesion_where_;  // the first positive surface_energy or work_of_adhesion
 };
 
 // Applies "a.b.0.c=value" to the tree; records where the value came from.

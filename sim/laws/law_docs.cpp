@@ -30,7 +30,13 @@ std::vector<EffectDoc> law_docs() {
                     .def(0.0).in(0, inf),
                 key("rolling_friction", K::Number, "rolling friction coefficient of the EPSD rolling model")
                     .def(0.0).in(0, inf),
-                key("cohesion_energy_density", K::Number, "SJKR cohesion energy density k_c").def(0.0).si("J/m^3").in(0, inf)}});
+                key("cohesion_energy_density", K::Number, "SJKR cohesion energy density k_c").def(0.0).si("J/m^3").in(0, inf),
+                key("surface_energy", K::Number,
+                    "surface energy g of the adhesive normal laws (contact.model: dmt): a pair's work of adhesion "
+                    "is 2 sqrt(g_a g_b), 2 g for one material")
+                    .def(0.0)
+                    .si("J/m^2")
+                    .in(0, inf)}});
   // The slots' choices, from the registries.
   const std::vector<std::string> normals = type_names(NormalLaws{});
   std::vector<std::string> tangentials{"auto", "none"};
@@ -75,7 +81,10 @@ std::vector<EffectDoc> law_docs() {
                    key("restitution", K::Number, "normal restitution").in(0, 1, true, false),
                    key("friction", K::Number, "sliding friction").in(0, inf),
                    key("rolling_friction", K::Number, "rolling friction").in(0, inf),
-                   key("cohesion_energy_density", K::Number, "SJKR cohesion").si("J/m^3").in(0, inf)}};
+                   key("cohesion_energy_density", K::Number, "SJKR cohesion").si("J/m^3").in(0, inf),
+                   key("work_of_adhesion", K::Number, "work of adhesion w of the adhesive normal laws")
+                       .si("J/m^2")
+                       .in(0, inf)}};
   for (const auto& k : law_maps) pairs.keys.push_back(k);
   d.push_back(pairs);
   for_each_type(NormalLaws{}, [&]<class N>() {

@@ -23,6 +23,9 @@ PairTable::PairTable(const std::vector<Material>& mats, const std::vector<PairOv
       p.friction = 0.5 * (A.friction + B.friction);
       p.rolling_friction = 0.5 * (A.rolling_friction + B.rolling_friction);
       p.cohesion = 0.5 * (A.cohesion + B.cohesion);
+      // Two surfaces of one material: w = 2 g (Dupre); of two: the geometric
+      // mean of theirs (Girifalco & Good), 2 sqrt(g_a g_b).
+      p.work_of_adhesion = 2.0 * std::sqrt(A.surface_energy * B.surface_energy);
       LawValues values = normal.values;
       for (const auto& o : overrides)
         if ((o.a == a && o.b == b) || (o.a == b && o.b == a)) {
@@ -30,6 +33,7 @@ PairTable::PairTable(const std::vector<Material>& mats, const std::vector<PairOv
           if (o.friction >= 0) p.friction = o.friction;
           if (o.rolling_friction >= 0) p.rolling_friction = o.rolling_friction;
           if (o.cohesion >= 0) p.cohesion = o.cohesion;
+          if (o.work_of_adhesion >= 0) p.work_of_adhesion = o.work_of_adhesion;
           values = o.normal.over(values);
         }
       std::string error;
@@ -50,6 +54,11 @@ bool PairTable::any_friction() const {
 bool PairTable::any_rolling() const {
   for (const auto& p : table_)
     if (p.rolling_friction > 0) return true;
+  return false;
+}
+bool PairTable::any_adhesion() const {
+  for (const auto& p : table_)
+    if (p.work_of_adhesion > 0) return true;
   return false;
 }
 bool PairTable::any_cohesion() const {

@@ -20,6 +20,7 @@ struct Material {
   double friction = 0;          // sliding, -
   double rolling_friction = 0;  // -
   double cohesion = 0;          // cohesion energy density, J/m^3
+  double surface_energy = 0;    // g, J/m^2 (adhesive normal laws)
   double shear_modulus() const { return youngs_modulus / (2 * (1 + poisson_ratio)); }
 };
 
@@ -27,6 +28,7 @@ struct Material {
 struct PairOverride {
   int a = -1, b = -1;
   double restitution = -1, friction = -1, rolling_friction = -1, cohesion = -1;  // < 0: not given
+  double work_of_adhesion = -1;                                                  // < 0: not given
   LawValues normal;  // the normal law's own keys for this pair (contact.pairs[].<law>); NaN: not given
 };
 
@@ -40,7 +42,8 @@ struct NormalLawChoice {
 /// n x n symmetric table of PairParams. Mixing rules (documented in
 /// docs/physics.md): E* and G* from the Hertz/Mindlin formulas; restitution,
 /// friction, rolling friction and cohesion are the arithmetic mean of the two
-/// materials unless a pair override gives them.
+/// materials, the work of adhesion w = 2 sqrt(g_a g_b) of their surface
+/// energies, unless a pair override gives them.
 class PairTable {
  public:
   PairTable() = default;
@@ -53,6 +56,7 @@ class PairTable {
   bool any_friction() const;
   bool any_rolling() const;
   bool any_cohesion() const;
+  bool any_adhesion() const;
 
  private:
   int n_ = 0;

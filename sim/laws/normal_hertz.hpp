@@ -22,8 +22,8 @@ namespace grains::sim {
 
 /// The normal state of a Hertz contact (normal_state.hpp).
 struct HertzState {
-  double force;    // clamped: >= 0
-  double load;     // = force
+  double force;    // Hertz: clamped, >= 0 (DMT, normal_dmt.hpp, less its attraction)
+  double load;     // Hertz: = force (DMT: plus its attraction)
   double sqrt_Rd;  // sqrt(R* d), the Hertz contact radius
   double scale;    // sqrt(m* K d^{1/2}): the normal damping coefficient is a times this
   GRAINS_INLINE double stiffness(const PairParams& p) const { return 2.0 * p.E_eff * sqrt_Rd; }

@@ -14,13 +14,25 @@
 //   step_scale(pairs, grains)      the time scale the time step is checked against
 //   examples()                     valid values, one per way of giving the law (the property tests run
 //                                  every law with each)
+//   adhesive (optional)            true: it reads PairParams::work_of_adhesion (materials' surface_energy)
 // (docs/architecture.md: how to add one).
+#include "sim/laws/normal_dmt.hpp"
 #include "sim/laws/normal_hertz.hpp"
 #include "sim/laws/normal_linear.hpp"
 #include "sim/registry.hpp"
 
 namespace grains::sim {
 
-using NormalLaws = TypeList<HertzNormal, LinearNormal>;  // the first is the default
+using NormalLaws = TypeList<HertzNormal, LinearNormal, DmtNormal>;  // the first is the default
+
+/// Whether a normal law acts on the pairs' work of adhesion (static
+/// constexpr bool adhesive = true); the others refuse a case that gives one.
+template <class N>
+constexpr bool is_adhesive() {
+  if constexpr (requires { N::adhesive; })
+    return N::adhesive;
+  else
+    return false;
+}
 
 }  // namespace grains::sim

@@ -13,6 +13,7 @@ struct PairParams {
   double friction = 0;          // sliding friction coefficient mu
   double rolling_friction = 0;  // rolling friction coefficient mu_r (dimensionless)
   double cohesion = 0;          // cohesion energy density k_c, J/m^3 (SJKR)
+  double work_of_adhesion = 0;  // w, J/m^2: 2 sqrt(g_a g_b) of the surface energies (adhesive normal laws)
   double tangential_damping_ratio = 0;  // 2 sqrt(G*/E*): eta_t / (a sqrt(m* K) d^{1/4})
   /// Constants the normal law prepared for this pair, laid out by the law
   /// (its prepare() and evaluate(); e.g. normal_linear.hpp).

@@ -29,6 +29,7 @@ Scene two_spheres(std::mt19937_64& rng, double gap_factor, bool swap, int histor
   m.friction = 0.4;
   m.rolling_friction = 0.1;
   m.cohesion = 1e4;
+  m.surface_energy = 0.05;  // the adhesive laws' attraction is in play (the others do not read it)
   s.materials = {m, m};
   s.materials[1].youngs_modulus = 3e8;
   s.materials[1].poisson_ratio = 0.2;
@@ -146,8 +147,8 @@ TEST(LawProperties, EveryCompositionObeysNewtonZeroBeyondContactAndExchangeSymme
     check_wall_law<Law>(normal);
     ++count;
   });
-  // 2 normal laws (1 + 5 examples) x 2 x 2 x 2.
-  EXPECT_EQ(count, 6 * 8);
+  // 3 normal laws (hertz 1, linear 5, dmt 1 examples) x 2 x 2 x 2.
+  EXPECT_EQ(count, 7 * 8);
 }
 
 TEST(LawProperties, CoulombLimitHoldsForEveryNormalLaw) {
