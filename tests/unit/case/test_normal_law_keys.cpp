@@ -92,6 +92,33 @@ TEST(NormalLawKeys, AnotherLawsKeysOrTangentialAreRefused) {
   EXPECT_NE(m.find("use 'mindlin'"), std::string::npos) << m;
 }
 
+TEST(NormalLawKeys, AdhesionNeedsAnAdhesiveLawAndIsLocated) {
+  std::string sticky = kCase;
+  sticky.replace(sticky.find("restitution: 0.6}"), 17, "restitution: 0.6, surface_energy: 0.05}");
+  // Given to a law without adhesion: refused where it is given, naming the law that has it.
+  auto m = errors_of(sticky);
+  EXPECT_NE(m.find("case.yaml:3:126: adhesion (surface_energy or work_of_adhesion > 0) needs an adhesive normal "
+                   "law, contact.model: dmt; model hertz has no adhesion and would ignore it"),
+            std::string::npos)
+      << m;
+  m = errors_of(kCase + "contact:\n  model: linear\n  linear: {stiffness: 3.0e3}\n  pairs:\n"
+                        "    - {materials: [glass, steel], work_of_adhesion: 0.1}\n");
+  EXPECT_NE(m.find("case.yaml:15:53: adhesion"), std::string::npos) << m;
+  EXPECT_NE(m.find("model linear has no adhesion"), std::string::npos) << m;
+  // A negative surface energy or work of adhesion: out of range.
+  std::string negative = kCase;
+  negative.replace(negative.find("restitution: 0.6}"), 17, "restitution: 0.6, surface_energy: -0.05}");
+  m = errors_of(negative + "contact: {model: dmt}\n");
+  EXPECT_NE(m.find("materials[0]: surface_energy = -0.05 J/m^2 is out of range; valid: >= 0"), std::string::npos) << m;
+  m = errors_of(kCase + "contact: {model: dmt, pairs: [{materials: [glass, steel], work_of_adhesion: -1}]}\n");
+  EXPECT_NE(m.find("work_of_adhesion = -1 J/m^2 is out of range; valid: >= 0"), std::string::npos) << m;
+  // Zero surface energy with any law is fine; with dmt the work of adhesion reaches the pair table.
+  EXPECT_NO_THROW(make_simulation(parse_case(kCase + "contact: {model: dmt}\n", "case.yaml")));
+  auto s = make_simulation(parse_case(sticky + "contact: {model: dmt}\n", "case.yaml"));
+  EXPECT_DOUBLE_EQ(s.scene.pairs(0, 0).work_of_adhesion, 0.1);
+  EXPECT_EQ(s.scene.pairs(0, 1).work_of_adhesion, 0.0);  // steel has none: 2 sqrt(0.05 * 0)
+}
+
 TEST(NormalLawKeys, TimeStepCheckedAgainstTheContactTime) {
   // dt = 1e-6 s: refused above t_c / pi, warned about above t_c / 20.
   auto m = errors_of(kCase + "contact: {model: linear, linear: {contact_time: 2.0e-6}}\n");
