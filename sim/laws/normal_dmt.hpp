@@ -61,9 +61,6 @@ struct DmtNormal {
     return s;
   }
 
-  /// The pull-off force of a pair: 2 pi w R*.
-  static double pull_off(const PairParams& p, double R) { return p.normal[sTwoPiW] * R; }
-
   static StepScale step_scale(const PairTable& t, const GrainExtremes& g) { return HertzNormal::step_scale(t, g); }
 };
 
