@@ -7,6 +7,7 @@
 // The normal law hands the other slots a law-neutral normal state
 // (normal_state.hpp). The registries of each slot are below and in
 // normal_laws.hpp.
+#include <algorithm>
 #include <string>
 
 #include <Eigen/Core>
@@ -32,7 +33,9 @@ struct ContactLaw {
   using R = Rolling;
   using C = Cohesion;
   static constexpr int tangential_history = T::history_size;
-  static constexpr int history_size = T::history_size + R::history_size;
+  /// The normal law's contact state (JKR: in contact or not) comes after the springs'.
+  static constexpr int normal_history = sim::normal_history<N>();
+  static constexpr int history_size = T::history_size + R::history_size + normal_history;
   static constexpr bool needs_rotation = T::needs_rotation || R::needs_rotation;
 
   static std::string name() {
@@ -50,10 +53,18 @@ struct ContactLaw {
   static GRAINS_INLINE Result evaluate(const contact::ContactGeometry& g, const Eigen::Vector3d& v_rel,
                                 const Eigen::Vector3d& w_rel, double m, const PairParams& p, double dt,
                                 double* hist) {
+    Result out;
+    if constexpr (normal_history > 0) {  // a contact that may outlive touching
+      if (!N::engaged(g.overlap, g.radius, p, hist[T::history_size + R::history_size])) {
+        std::fill_n(hist, history_size, 0.0);
+        out.force.setZero();
+        out.rolling_torque.setZero();
+        return out;
+      }
+    }
     const Eigen::Vector3d& n = g.normal;
     const double vn = v_rel.dot(n);
     const auto ns = N::evaluate(g.overlap, -vn, g.radius, m, p);
-    Result out;
     out.force = n * (ns.force - C::force(g.overlap, g.radius, p));
     if constexpr (T::history_size > 0) {
       const Eigen::Vector3d vt = v_rel - n * vn;
@@ -88,6 +99,7 @@ struct ContactLaw {
         const auto ns = N::evaluate(g.overlap, -vn, g.radius, m, p);
         R::rate(n, w_rel, ns, g.radius, p, rate + T::history_size);
       }
+      if constexpr (normal_history > 0) std::fill_n(rate + T::history_size + R::history_size, normal_history, 0.0);
     }
     (void)rate;
     return out;

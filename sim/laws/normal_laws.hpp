@@ -15,15 +15,20 @@
 //   examples()                     valid values, one per way of giving the law (the property tests run
 //                                  every law with each)
 //   adhesive (optional)            true: it reads PairParams::work_of_adhesion (materials' surface_energy)
+//   history_size, engaged(d, R*, p, on), reach(R*, p), reach(pairs, R)   (optional)
+//                                  a law whose contacts outlive touching (JKR): one double of state per
+//                                  contact, whether the pair is in contact at overlap d (updating it), and
+//                                  how far below zero overlap a contact may hold (lists and ghosts reach it)
 // (docs/architecture.md: how to add one).
 #include "sim/laws/normal_dmt.hpp"
 #include "sim/laws/normal_hertz.hpp"
+#include "sim/laws/normal_jkr.hpp"
 #include "sim/laws/normal_linear.hpp"
 #include "sim/registry.hpp"
 
 namespace grains::sim {
 
-using NormalLaws = TypeList<HertzNormal, LinearNormal, DmtNormal>;  // the first is the default
+using NormalLaws = TypeList<HertzNormal, LinearNormal, DmtNormal, JkrNormal>;  // the first is the default
 
 /// Whether a normal law acts on the pairs' work of adhesion (static
 /// constexpr bool adhesive = true); the others refuse a case that gives one.
@@ -33,6 +38,16 @@ constexpr bool is_adhesive() {
     return N::adhesive;
   else
     return false;
+}
+
+/// The doubles of contact state a normal law keeps (after the tangential and
+/// rolling springs'): 0 for laws whose contact is simply "overlap > 0".
+template <class N>
+constexpr int normal_history() {
+  if constexpr (requires { N::history_size; })
+    return N::history_size;
+  else
+    return 0;
 }
 
 }  // namespace grains::sim

@@ -73,7 +73,7 @@ bool NeighborList::needs_rebuild(const ParticleStore& p, const Walls& walls, dou
 }
 
 void NeighborList::sort_by_cell(ParticleStore& p, const Vec3& lo, const Vec3& hi) const {
-  const CellGrid grid(p, p.n_owned(), skin_, lo, hi);
+  const CellGrid grid(p, p.n_owned(), skin_ + reach_, lo, hi);
   p.permute(grid.order);
 }
 
@@ -91,7 +91,7 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
     prev_partner_.swap(partner);
     prev_history_.swap(history);
   }
-  CellGrid grid(p, n, skin_, lo_bound, hi_bound);
+  CellGrid grid(p, n, skin_ + reach_, lo_bound, hi_bound);
   if (sort && p.n_ghost() == 0) {
     p.permute(grid.order);  // particles now in cell order: slot k holds particle k
     std::iota(grid.order.begin(), grid.order.end(), std::size_t{0});
@@ -129,7 +129,7 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
                   if ((i >= n_own && j >= n_own) || p.id[i] == p.id[j]) continue;
                 if constexpr (decltype(exclude_same_body)::value)
                   if (p.body[i] >= 0 && p.body[i] == p.body[j]) continue;
-                const double cut = p.radius[i] + p.radius[j] + skin_;
+                const double cut = p.radius[i] + p.radius[j] + (skin_ + reach_);
                 if ((p.x[i] - p.x[j]).squaredNorm() < cut * cut) {
                   const bool i_first = p.id[i] < p.id[j];
                   pi.push_back(static_cast<std::uint32_t>(i_first ? i : j));
@@ -171,7 +171,7 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   wall_near.assign(walls.count(), {});
   wall_items.assign(walls.count(), {});
   walls.for_each([&](const auto& wall, std::size_t w) {
-    wall.near_list(p, n_own, skin_, shapes, wall_near[w], wall_items[w]);
+    wall.near_list(p, n_own, skin_ + reach_, shapes, wall_near[w], wall_items[w]);
   });
 
   x_build_.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(n_own));
@@ -189,8 +189,9 @@ void NeighborList::compute_pair_constants(const ParticleStore& p) {
     for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
       const auto j = partner[k];
       const double rs = p.radius[i] + p.radius[j];
+      const double rc = rs + reach_;  // a contact in tension (JKR) holds up to reach_ apart
       // may_touch starts true: history carried over (or restored) may be non-zero.
-      pair_constants[k] = {rs * rs, p.radius[i] * p.radius[j] / rs, p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]),
+      pair_constants[k] = {rc * rc, p.radius[i] * p.radius[j] / rs, p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]),
                            true};
     }
 }

@@ -31,6 +31,12 @@ class NeighborList {
     skin_ = skin;
   }
   double skin() const { return skin_; }
+  /// How far apart (m, beyond touching) a contact may still hold: a normal
+  /// law whose contacts outlive touching (JKR) sets its largest pull-off
+  /// separation. The lists, the wall near lists and the force loop's first
+  /// rejection reach this much further than the skin; 0 for every other law.
+  void set_reach(double reach) { reach_ = reach; }
+  double reach() const { return reach_; }
   int history_size() const { return history_size_; }
 
   /// True when the list no longer covers every pair that may touch.
@@ -92,7 +98,7 @@ class NeighborList {
   std::vector<std::uint32_t> partner;   // local index of the other particle
   std::vector<double> history;          // history_size per entry
   /// Per-entry constants of a sphere pair, computed at build time: the
-  /// squared contact distance (ri + rj)^2, R* and m*. They never change
+  /// squared contact distance (ri + rj + reach())^2, R* and m*. They never change
   /// between builds, so the force loop does no divisions for them.
   /// `may_touch` is false only when the pair is known apart with zero
   /// history, so the force loop skips its history for non-touching pairs.
@@ -131,6 +137,7 @@ class NeighborList {
   void build_gather(const ParticleStore& p);
   int history_size_ = 0;
   double skin_ = 0;
+  double reach_ = 0;
   double build_time_ = 0;
   bool with_gather_ = false;
   double growth_ = 0;  // largest radius growth since the build

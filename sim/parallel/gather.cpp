@@ -51,6 +51,7 @@ Scene gather_scene(Scene& s) {
   g.growth = s.growth;  // the same on every rank
   g.particles.configure(p.fields(), p.wall_history_size(), p.wall_tag_size());
   g.neighbors.configure(H, s.neighbors.skin());
+  g.neighbors.set_reach(s.neighbors.reach());
   if (!comm.root()) return g;
 
   ParticleStore all;

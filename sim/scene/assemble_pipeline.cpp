@@ -22,11 +22,18 @@ namespace grains::sim {
 
 namespace {
 
+// (Laws whose contacts outlive touching, JKR, are for spheres and clumps
+// only, with Verlet and no cohesion slot: build_scene refuses the rest, and
+// those stages are not instantiated for them.)
 template <class Law>
 void add_contact_stages(Pipeline& p, const SceneNeeds& n) {
   if (n.ellipsoids) {
-    p.add(std::make_unique<ShapePairContactStage<Law>>());
-    if (n.walls) p.add(std::make_unique<WallStage<Law, true>>());
+    if constexpr (holds_beyond_touching<Law>()) {
+      throw SetupError(Law::name() + " has no ellipsoid contacts");
+    } else {
+      p.add(std::make_unique<ShapePairContactStage<Law>>());
+      if (n.walls) p.add(std::make_unique<WallStage<Law, true>>());
+    }
     return;
   }
   p.add(std::make_unique<PairContactStage<Law>>());
@@ -36,17 +43,25 @@ void add_contact_stages(Pipeline& p, const SceneNeeds& n) {
 // With ARKODE the law's history is part of the ODE state (laws with history only).
 template <class Law>
 void add_law(Pipeline& p, const SceneNeeds& n) {
-  if constexpr (Law::history_size > 0)
+  if constexpr (holds_beyond_touching<Law>()) {
+    if (n.history_in_state) throw SetupError(Law::name() + " keeps a contact state ARKODE does not integrate");
+  } else if constexpr (Law::history_size > 0) {
     if (n.history_in_state) {
       add_contact_stages<HistoryInState<Law>>(p, n);
       return;
     }
+  }
   add_contact_stages<Law>(p, n);
 }
 
 // The slots' laws by their registry names (SceneNeeds: "none" when off).
 template <class N, class T, class R>
 void dispatch_cohesion(Pipeline& p, const SceneNeeds& n) {
+  if constexpr (normal_history<N>() > 0) {
+    if (n.cohesion_law != "none") throw SetupError(std::string(N::name) + " takes no cohesion slot");
+    add_law<ContactLaw<N, T, R, NoCohesion>>(p, n);
+    return;
+  }
   if (!with_type_named(CohesionLaws{}, n.cohesion_law, [&]<class C>() { add_law<ContactLaw<N, T, R, C>>(p, n); }))
     throw SetupError("unknown cohesion law '" + n.cohesion_law + "'");
 }

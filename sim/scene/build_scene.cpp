@@ -105,7 +105,8 @@ SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs) {
   n.gravity = c.gravity.squaredNorm() > 0;
   n.walls = c.walls.count() > 0;
   n.moving_walls = c.walls.max_speed() > 0;
-  n.history_size = n.tangential_history + n.rolling_history;
+  with_type_named(NormalLaws{}, c.normal.name, [&]<class N>() { n.normal_history = normal_history<N>(); });
+  n.history_size = n.tangential_history + n.rolling_history + n.normal_history;
   if (c.integrator == Integrator::Arkode && n.history_size > 0) {
     n.history_in_state = true;
     n.history_size *= 2;
@@ -181,6 +182,21 @@ Scene build_scene(SceneConfig& c) {
     throw SetupError(c.normal_where + ": " + e.what());
   }
   const SceneNeeds need = scene_needs(c, s.pairs);
+  // A normal law whose contacts outlive touching (JKR) keeps a contact state
+  // the ellipsoid stages, ARKODE's ODE state and the overlap-based cohesion
+  // slot have no place for.
+  if (need.normal_history > 0) {
+    const std::string law = "contact.model " + c.normal.name;
+    if (need.ellipsoids)
+      throw SetupError(c.normal_where + ": " + law + " is a law of spheres (and clumps of spheres); this scene has "
+                       "ellipsoids: use model dmt for adhesive ellipsoids");
+    if (c.integrator == Integrator::Arkode)
+      throw SetupError(c.normal_where + ": " + law + " keeps whether each contact holds in tension, which is not "
+                       "part of ARKODE's state; use time.integrator: verlet (" + c.integrator_where + ")");
+    if (need.cohesion)
+      throw SetupError(c.normal_where + ": " + law + " is itself the adhesion; cohesion (sjkr, from "
+                       "cohesion_energy_density) would act on top of it: give one or the other");
+  }
 
   // Time step: against the time scale of the normal law.
   const GrainExtremes extremes = grain_extremes(c);
@@ -281,6 +297,12 @@ Scene build_scene(SceneConfig& c) {
   check_insertions(c);
   // Ellipsoid scenes keep the PW85 lambda of each pair after the law's history.
   s.neighbors.configure(need.history_size + (need.ellipsoids ? 1 : 0), c.skin * 2 * rmax);
+  // Contacts that hold beyond touching (JKR): the lists reach the largest
+  // pull-off separation (R* is at most the largest radius, against a wall).
+  const double grow = c.growth.enabled ? c.growth.max_scale : 1.0;
+  with_type_named(NormalLaws{}, c.normal.name, [&]<class N>() {
+    if constexpr (normal_history<N>() > 0) s.neighbors.set_reach(N::reach(s.pairs, rmax * grow));
+  });
   setup_parallel(s, c, rmax);
   return s;
 }
@@ -311,7 +333,7 @@ void setup_parallel(Scene& s, const SceneConfig& c, double rmax) {
     }
   // Growing radii (radius_growth) reach at most max_scale times their start.
   const double grow = c.growth.enabled ? c.growth.max_scale : 1.0;
-  const double cut = 2 * rmax * grow + s.neighbors.skin() + extent;
+  const double cut = 2 * rmax * grow + s.neighbors.skin() + extent + s.neighbors.reach();
   ExchangeOptions opt;
   opt.dims = c.parallel.dims;
   opt.balance_threshold = c.parallel.balance_threshold;

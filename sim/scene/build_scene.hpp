@@ -15,6 +15,7 @@ struct SceneNeeds {
   /// The rolling and cohesion laws by registry name ("none" when the slot is off).
   std::string rolling_law = "none", cohesion_law = "none";
   int tangential_history = 0, rolling_history = 0;  // doubles per contact of each slot's law
+  int normal_history = 0;  // the normal law's contact state (JKR: in contact), after the springs'
   bool rotation = false;
   bool ellipsoids = false;  // some particle is non-spherical: rigid-body integrator, shape dispatch
   bool clumps = false;      // some set is made of rigid clumps: body field, BodyStore and its stages

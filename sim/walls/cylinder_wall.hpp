@@ -67,7 +67,7 @@ struct CylinderWall : WallCommon {
   }
 
   template <bool Shapes, class Slots, class Emit>
-  GRAINS_INLINE void contacts(const ParticleStore& p, std::size_t i, std::span<const std::uint32_t>, Slots&&,
+  GRAINS_INLINE void contacts(const ParticleStore& p, std::size_t i, std::span<const std::uint32_t>, Slots&& slots,
                               Emit&& emit) const {
     contact::ContactGeometry g;
     if constexpr (Shapes) {
@@ -78,7 +78,7 @@ struct CylinderWall : WallCommon {
         return;
       }
     }
-    if (contact::sphere_cylinder(p.x[i], p.radius[i], surface, g)) emit(g, 0);
+    if (contact::sphere_cylinder(p.x[i], p.radius[i] + slots.reach, surface, g)) emit(g, 0);
   }
 
   bool touches(const Vec3& x, double r) const {

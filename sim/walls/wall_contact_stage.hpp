@@ -54,6 +54,9 @@ struct WallSlots {
   double* hist;  // H doubles per slot (null when H = 0)
   double* tags;  // tagged kinds with history: the mask of the slots held, then 3 doubles per slot
   int n = 1;     // slots
+  /// How far beyond touching a contact may hold (JKR; else 0): the kinds
+  /// look for contacts of spheres of radius p.radius[i] + reach.
+  double reach = 0;
   static constexpr bool keeps_history() { return H > 0; }
   bool held(int k) const {
     if constexpr (H == 0) {
@@ -70,6 +73,15 @@ struct WallSlots {
   unsigned mask() const { return static_cast<unsigned>(tags[0]); }
   void set_mask(unsigned m) const { tags[0] = static_cast<double>(m); }
 };
+
+/// Whether a law's contacts may hold beyond touching (JKR, sim/laws/normal_laws.hpp).
+template <class Law>
+constexpr bool holds_beyond_touching() {
+  if constexpr (requires { Law::normal_history; })
+    return Law::normal_history > 0;
+  else
+    return false;
+}
 
 template <class Law, bool Shapes = false>
 class WallStage final : public Stage {
@@ -99,6 +111,8 @@ class WallStage final : public Stage {
     const int WH = p.wall_history_size();
     const int WT = p.wall_tag_size();
     const int slots = wall.history_slots;
+    constexpr bool Beyond = holds_beyond_touching<Law>();
+    const double reach = s.neighbors.reach();
     const auto nn = static_cast<std::ptrdiff_t>(near.size());
     const bool threads = s.deterministic && use_threads(nn, 256);
     Vec3 point{0, 0, 0};
@@ -129,13 +143,21 @@ class WallStage final : public Stage {
       }
       double* hist = H > 0 ? hist0 + i * static_cast<std::size_t>(WH) : nullptr;
       double* tags = Tagged ? tags0 + i * static_cast<std::size_t>(WT) : nullptr;
-      const WallSlots<H, Tagged> sl{hist, tags, slots};
+      const WallSlots<H, Tagged> sl{hist, tags, slots, Beyond ? reach : 0.0};
       unsigned used = 0;  // the slots a contact used this step
       const std::span<const std::uint32_t> row =
           item_start ? std::span<const std::uint32_t>(item + item_start[m], item + item_start[m + 1])
                      : std::span<const std::uint32_t>();
       wall.template contacts<Shapes>(p, i, row, sl,
-                                     [&](const contact::ContactGeometry& g, int slot) {
+                                     [&](const contact::ContactGeometry& found, int slot) {
+        // (A kind found the contact of the sphere grown by the reach: the overlap and R* are the sphere's.)
+        [[maybe_unused]] contact::ContactGeometry grown;
+        if constexpr (Beyond) {
+          grown = found;
+          grown.overlap -= reach;
+          grown.radius = p.radius[i];
+        }
+        const contact::ContactGeometry& g = Beyond ? grown : found;
         [[maybe_unused]] std::array<double, Tagged ? H : 1> spare;  // a contact beyond the slots: no history
         double* h = nullptr;
         if constexpr (H > 0) {

@@ -98,7 +98,7 @@ TEST(NormalLawKeys, AdhesionNeedsAnAdhesiveLawAndIsLocated) {
   // Given to a law without adhesion: refused where it is given, naming the law that has it.
   auto m = errors_of(sticky);
   EXPECT_NE(m.find("case.yaml:3:126: adhesion (surface_energy or work_of_adhesion > 0) needs an adhesive normal "
-                   "law, contact.model: dmt; model hertz has no adhesion and would ignore it"),
+                   "law, contact.model: dmt or jkr; model hertz has no adhesion and would ignore it"),
             std::string::npos)
       << m;
   m = errors_of(kCase + "contact:\n  model: linear\n  linear: {stiffness: 3.0e3}\n  pairs:\n"
@@ -135,6 +135,58 @@ TEST(NormalLawKeys, TimeStepCheckedAgainstTheContactTime) {
   EXPECT_NE(s.c.scene.warnings[0].find("0.1 contact times"), std::string::npos) << s.c.scene.warnings[0];
   auto quiet = make_simulation(parse_case(kCase + "contact: {model: linear, linear: {contact_time: 1.0e-4}}\n", "case.yaml"));
   EXPECT_TRUE(quiet.c.scene.warnings.empty());
+}
+
+TEST(NormalLawKeys, JkrRefusesWhatItHasNoPlaceForAtTheModel) {
+  std::string sticky = kCase;
+  sticky.replace(sticky.find("restitution: 0.6}"), 17, "restitution: 0.6, surface_energy: 0.05}");
+  EXPECT_NO_THROW(make_simulation(parse_case(sticky + "contact: {model: jkr}\n", "case.yaml")));
+  // Ellipsoids: JKR is a law of spheres; dmt is offered.
+  std::string ell = sticky;
+  ell.replace(ell.find("    count: 10\n"), 14, "    count: 10\n    shape: {type: ellipsoid, aspect_ratio: 2.0}\n");
+  auto m = errors_of(ell + "contact: {model: jkr}\n");
+  EXPECT_NE(m.find("case.yaml:12:18: "), std::string::npos) << m;
+  EXPECT_NE(m.find("contact.model jkr is a law of spheres (and clumps of spheres); this scene has ellipsoids: use "
+                   "model dmt"),
+            std::string::npos)
+      << m;
+  // ARKODE: its state has no place for the contact state.
+  std::string ark = sticky;
+  ark.replace(ark.find("time: {dt: 1.0e-6, end: 1.0e-5}"), 31, "time: {dt: 1.0e-6, end: 1.0e-5, integrator: arkode}");
+  m = errors_of(ark + "contact: {model: jkr}\n");
+  EXPECT_NE(m.find("case.yaml:11:18: "), std::string::npos) << m;
+  EXPECT_NE(m.find("use time.integrator: verlet (case.yaml:10:"), std::string::npos) << m;
+  // SJKR cohesion on top of JKR adhesion.
+  std::string coh = sticky;
+  coh.replace(coh.find("surface_energy: 0.05}"), 21, "surface_energy: 0.05, cohesion_energy_density: 1.0e4}");
+  m = errors_of(coh + "contact: {model: jkr}\n");
+  EXPECT_NE(m.find("contact.model jkr is itself the adhesion; cohesion (sjkr"), std::string::npos) << m;
+}
+
+TEST(NormalLawKeys, JkrTimeStepCheckedAgainstTheAdhesiveNeck) {
+  // Very sticky soft grains (w = 6 J/m^2, E = 1e7 Pa, R = 0.5 mm): the
+  // period of the adhesive neck, sqrt(m*/k0) = 3.17e-5 s, is shorter than the
+  // Rayleigh time 4.33e-5 s, so it is what the time step is checked against.
+  std::string sticky = kCase;
+  sticky.replace(sticky.find("restitution: 0.6}"), 17, "restitution: 0.6, surface_energy: 3.0}");
+  auto with_dt = [&](const std::string& dt) {
+    std::string c = sticky;
+    c.replace(c.find("dt: 1.0e-6"), 10, "dt: " + dt);
+    return c + "contact: {model: jkr}\n";
+  };
+  // 1.15e-5 s: 0.27 Rayleigh times (no warning from them), 0.36 neck times (a warning).
+  auto s = make_simulation(parse_case(with_dt("1.15e-5"), "case.yaml"));
+  ASSERT_EQ(s.c.scene.warnings.size(), 1u);
+  EXPECT_NE(s.c.scene.warnings[0].find("case.yaml:10:"), std::string::npos) << s.c.scene.warnings[0];
+  EXPECT_NE(s.c.scene.warnings[0].find("0.3628 neck times (t_neck"), std::string::npos) << s.c.scene.warnings[0];
+  // 3.5e-5 s: 0.81 Rayleigh times, 1.1 neck times: refused.
+  auto m = errors_of(with_dt("3.5e-5"));
+  EXPECT_NE(m.find("case.yaml:10:"), std::string::npos) << m;
+  EXPECT_NE(m.find("1.104 neck times"), std::string::npos) << m;
+  // The same step with Hertz: under the Rayleigh limits, no word.
+  std::string hertz = with_dt("1.15e-5");
+  hertz.replace(hertz.find("surface_energy: 3.0"), 19, "surface_energy: 0.0");
+  EXPECT_TRUE(make_simulation(parse_case(hertz, "case.yaml")).c.scene.warnings.empty());
 }
 
 }  // namespace

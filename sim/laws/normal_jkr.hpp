@@ -1,0 +1,160 @@
+#pragma once
+// Normal slot: JKR adhesion (Johnson, Kendall & Roberts, Proc. R. Soc. A
+// 324, 1971; Johnson, Contact Mechanics, 1985, sec. 5.5) for soft or large
+// sticky grains. In terms of the contact radius a (w: the pair's work of
+// adhesion, E*, R* as for Hertz):
+//   F = 4 E* a^3 / (3 R*) - sqrt(8 pi w E* a^3),   d = a^2 / R* - sqrt(2 pi w a / E*).
+// Scaled by the load-controlled pull-off point, F_c = 3/2 pi w R*,
+// a_c = (9 pi w R*^2 / (8 E*))^(1/3), d_c = a_c^2 / (3 R*), x = a / a_c:
+//   F / F_c = x^3 - 2 x^(3/2),   d / d_c = 3 x^2 - 4 x^(1/2)
+// (docs/dev/adhesion_sources.md). The law inverts the second relation in
+// closed form on the stable branch (a quartic in sqrt(x) by Ferrari's
+// resolvent cubic, evaluated without cancellation) and so needs no
+// iteration and no state for the force.
+//
+// Hysteresis: a contact forms when the surfaces touch (d >= 0, where the
+// force jumps to -8/9 F_c) and then persists in tension, at negative
+// overlap, down to the separation where the stable branch ends under
+// displacement control, d_f = -3^(2/3) d_c (a = a_c / 3^(2/3), F = -5/9 F_c:
+// the vertical tangent of the d(a) curve), where it snaps off. (LAMMPS's jkr
+// lets go earlier, at d = -d_c where F = -F_c.) Whether a pair is in contact
+// is one double of history after the tangential and rolling springs'; the
+// neighbour lists, ghosts and wall near lists reach d_f further
+// (NeighborList::reach), so a stretched contact is never missed.
+//
+// Damping: the Hertz part's calibrated dashpot with the Hertz stiffness of
+// the JKR contact radius, eta = a_damp sqrt(m* 4/3 E* a) (exactly Hertz's when
+// w = 0, so the restitution without adhesion is the requested one; it never
+// divides by the overlap). The repulsive part 4 E* a^3/(3R*) + eta d_dot is
+// clamped at zero as Hertz's is, the adhesive part is not damped. The
+// Coulomb and rolling limits scale with F_n + 2 F_c (Thornton 1991; Marshall,
+// J. Comput. Phys. 228, 2009, eq. 43; LAMMPS's cohesive limit), Mindlin's
+// tangential spring 8 G* a uses the JKR contact radius (Thornton & Yin,
+// Powder Technol. 65, 1991). A pair with w = 0 is a Hertz contact, bit for
+// bit. Registered in normal_laws.hpp.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "sim/laws/normal_hertz.hpp"
+
+namespace grains::sim {
+
+/// The JKR relations in Johnson's scaled form (the law and its tests use them).
+struct JkrCurve {
+  /// 3^(2/3): the break d_f = -kBreak d_c and x_f = 1 / kBreak.
+  static constexpr double kBreak = 2.0800838230519041;
+  /// x = a / a_c on the stable branch for the scaled overlap dh = d / d_c >= -kBreak.
+  static GRAINS_INLINE double x_of(double dh) {
+    // sqrt(x) = u solves u^4 - 4/3 u - dh/3 = 0. Ferrari: with y the real root
+    // of y^3 + P y - 2/9 = 0, P = dh/3, s = sqrt(2 y), u = (s + sqrt(8/(3 s) - s^2)) / 2.
+    const double P = dh * (1.0 / 3.0);
+    const double q = P * (1.0 / 3.0);
+    const double D = std::max(0.0, 1.0 / 81.0 + q * q * q);  // 0 exactly at the break
+    const double t = std::cbrt(1.0 / 9.0 + std::sqrt(D));   // Cardano: y = t - P / (3 t)
+    // (For P > 0 the difference cancels; t^3 + t'^3 = 2/9 with t' = -P/(3t) gives a sum instead.)
+    const double y = P > 0 ? (2.0 / 9.0) / (t * t + q + q * q / (t * t)) : t - q / t;
+    const double s = std::sqrt(2.0 * y);
+    const double u = 0.5 * (s + std::sqrt(std::max(0.0, (8.0 / 3.0) / s - s * s)));
+    return u * u;
+  }
+  static double force(double x) { return x * x * x - 2.0 * x * std::sqrt(x); }  // F / F_c
+  static double overlap(double x) { return 3.0 * x * x - 4.0 * std::sqrt(x); }  // d / d_c
+};
+
+struct JkrNormal {
+  static constexpr const char* name = "jkr";
+  static constexpr const char* tangential_name = "mindlin";
+  static constexpr bool adhesive = true;
+  /// One double per contact: 1 while the pair is in contact (it may then be stretched to d_f).
+  static constexpr int history_size = 1;
+  // PairParams::normal: 3/2 pi w; (9 pi w / (8 E*))^(1/3); its square / 3; 3^(2/3) times that
+  enum Slot { sFc, sAc, sDc, sBreak };
+
+  static std::string summary() {
+    return "JKR adhesion (Johnson-Kendall-Roberts 1971) for soft or large sticky grains: the force of the JKR "
+           "contact radius, F = 4 E* a^3/(3 R*) - sqrt(8 pi w E* a^3), pull-off force 3/2 pi w R*, w the pair's "
+           "work of adhesion (2 sqrt(g_a g_b) from materials[].surface_energy, or contact.pairs[].work_of_adhesion). "
+           "Hysteretic: a contact forms on touching and holds in tension down to the separation "
+           "-(3/4)(pi^2 w^2 R*/E*^2)^(1/3), where it snaps off (the neighbour lists reach that far). Damped as "
+           "model: hertz with the Hertz stiffness of the JKR contact radius, so the restitution is exact without "
+           "adhesion; the friction and rolling limits scale with F_n + 2 F_c; Mindlin's tangential spring 8 G* a. "
+           "Spheres and clumps (not ellipsoids), integrator verlet.";
+  }
+  static std::vector<KeySpec> keys() { return {}; }
+  static std::string check(const LawValues&) { return {}; }
+  static std::vector<LawValues> examples() { return {LawValues{}}; }
+
+  static std::string prepare(PairParams& p, const LawValues& v) {
+    if (auto e = HertzNormal::prepare(p, v); !e.empty()) return e;
+    const double w = p.work_of_adhesion;
+    p.normal[sFc] = 1.5 * M_PI * w;
+    p.normal[sAc] = std::cbrt(9.0 * M_PI * w / (8.0 * p.E_eff));
+    p.normal[sDc] = p.normal[sAc] * p.normal[sAc] / 3.0;
+    p.normal[sBreak] = JkrCurve::kBreak * p.normal[sDc];
+    return {};
+  }
+
+  /// How far beyond touching (m) a contact of radius of curvature R may hold: |d_f|.
+  static GRAINS_INLINE double reach(double R, const PairParams& p) { return p.normal[sBreak] * std::cbrt(R); }
+  /// The farthest any pair of the table may hold, for radii of curvature up to R.
+  template <class Table>  // PairTable (material.hpp)
+  static double reach(const Table& t, double R) {
+    double r = 0;
+    for (int a = 0; a < t.size(); ++a)
+      for (int b = 0; b < t.size(); ++b) r = std::max(r, reach(R, t(a, b)));
+    return r;
+  }
+
+  /// Whether the pair is in contact at overlap d, updating its state `on`:
+  /// it forms on touching and lets go beyond d_f.
+  static GRAINS_INLINE bool engaged(double d, double R, const PairParams& p, double& on) {
+    if (d >= 0) {
+      on = 1.0;
+      return true;
+    }
+    if (on != 0.0 && d > -reach(R, p)) return true;
+    on = 0.0;
+    return false;
+  }
+
+  static GRAINS_INLINE HertzState evaluate(double d, double d_dot, double R, double m, const PairParams& p) {
+    if (p.work_of_adhesion == 0) return HertzNormal::evaluate(d, d_dot, R, m, p);
+    const double cR = std::cbrt(R);
+    const double x = JkrCurve::x_of(d / (p.normal[sDc] * cR));
+    const double a = p.normal[sAc] * cR * cR * x;
+    const double fc = p.normal[sFc] * R;
+    const double scale = std::sqrt(m * (4.0 / 3.0) * p.E_eff * a);
+    const double rep = std::max(0.0, fc * x * x * x + p.damping * scale * d_dot);
+    HertzState s;
+    s.force = rep - 2.0 * fc * x * std::sqrt(x);
+    s.load = std::max(0.0, s.force + 2.0 * fc);
+    s.sqrt_Rd = a;
+    s.scale = scale;
+    return s;
+  }
+
+  /// The Rayleigh time, or the period of the adhesive neck when that is
+  /// shorter: sqrt(m*/k0) of the smallest grains' contact at zero load (its
+  /// stiffness k0 = 0.4762 F_c / d_c) for the stickiest pair.
+  template <class Table>
+  static StepScale step_scale(const Table& t, const GrainExtremes& g) {
+    StepScale s = HertzNormal::step_scale(t, g);
+    const double R = 0.5 * g.min_radius, m = 0.5 * g.min_mass;
+    double tn = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < t.size(); ++a)
+      for (int b = 0; b < t.size(); ++b) {
+        const PairParams& p = t(a, b);
+        if (p.work_of_adhesion <= 0 || !(R > 0) || !(m > 0)) continue;
+        tn = std::min(tn, std::sqrt(m / (kNeckStiffness * p.normal[sFc] * R / (p.normal[sDc] * std::cbrt(R)))));
+      }
+    if (tn < s.time) s = {tn, "neck times", "t_neck = sqrt(m*/k_0) of the adhesive neck", 1.0, 0.3, false};
+    return s;
+  }
+  /// dF/dd at zero load (x = 2^(2/3)), in F_c / d_c.
+  static constexpr double kNeckStiffness = 0.47622031559045984;  // 0.3 * 2^(2/3)
+};
+
+}  // namespace grains::sim
