@@ -43,6 +43,15 @@ struct ContactLaw {
            "+cohesion:" + C::name;
   }
 
+  /// The normal law's state of the contact (with its own contact state, if it keeps one).
+  static GRAINS_INLINE auto normal_state(const contact::ContactGeometry& g, double d_dot, double m, const PairParams& p,
+                                         double* hist) {
+    if constexpr (normal_history > 0)
+      return N::evaluate(g.overlap, d_dot, g.radius, m, p, hist[T::history_size + R::history_size]);
+    else
+      return N::evaluate(g.overlap, d_dot, g.radius, m, p);
+  }
+
   struct Result {
     Eigen::Vector3d force;         // on body i; body j receives -force
     Eigen::Vector3d rolling_torque;  // on body i; body j receives minus it
@@ -64,7 +73,7 @@ struct ContactLaw {
     }
     const Eigen::Vector3d& n = g.normal;
     const double vn = v_rel.dot(n);
-    const auto ns = N::evaluate(g.overlap, -vn, g.radius, m, p);
+    const auto ns = normal_state(g, -vn, m, p, hist);
     out.force = n * (ns.force - C::force(g.overlap, g.radius, p));
     if constexpr (T::history_size > 0) {
       const Eigen::Vector3d vt = v_rel - n * vn;
@@ -96,7 +105,7 @@ struct ContactLaw {
       const double vn = v_rel.dot(n);
       if constexpr (T::history_size > 0) T::rate(v_rel - n * vn, rate);
       if constexpr (R::history_size > 0) {
-        const auto ns = N::evaluate(g.overlap, -vn, g.radius, m, p);
+        const auto ns = normal_state(g, -vn, m, p, hist);
         R::rate(n, w_rel, ns, g.radius, p, rate + T::history_size);
       }
       if constexpr (normal_history > 0) std::fill_n(rate + T::history_size + R::history_size, normal_history, 0.0);
@@ -105,5 +114,15 @@ struct ContactLaw {
     return out;
   }
 };
+
+/// Whether a law's contacts may hold beyond touching (JKR, normal_laws.hpp):
+/// the stages then look for them within NeighborList::reach().
+template <class Law>
+constexpr bool holds_beyond_touching() {
+  if constexpr (requires { Law::normal_history; })
+    return Law::normal_history > 0;
+  else
+    return false;
+}
 
 }  // namespace grains::sim

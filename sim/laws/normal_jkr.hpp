@@ -42,22 +42,47 @@
 
 namespace grains::sim {
 
-/// The JKR relations in Johnson's scaled form (the law and its tests use them).
+/// The JKR relations. With u = sqrt(a), the overlap relation is the quartic
+///   u^4 - B u - A = 0,   A = R* d,   B = R* sqrt(2 pi w / E*),
+/// whose largest root is the stable branch (it exists down to the break,
+/// where the quartic has a double root at u^3 = B/4: the vertical tangent).
 struct JkrCurve {
-  /// 3^(2/3): the break d_f = -kBreak d_c and x_f = 1 / kBreak.
+  /// 3^(2/3): the break d_f = -kBreak d_c (Johnson's scaled form below).
   static constexpr double kBreak = 2.0800838230519041;
-  /// x = a / a_c on the stable branch for the scaled overlap dh = d / d_c >= -kBreak.
-  static GRAINS_INLINE double x_of(double dh) {
-    // sqrt(x) = u solves u^4 - 4/3 u - dh/3 = 0. Ferrari: with y the real root
-    // of y^3 + P y - 2/9 = 0, P = dh/3, s = sqrt(2 y), u = (s + sqrt(8/(3 s) - s^2)) / 2.
-    const double P = dh * (1.0 / 3.0);
-    const double q = P * (1.0 / 3.0);
-    const double D = std::max(0.0, 1.0 / 81.0 + q * q * q);  // 0 exactly at the break
-    const double t = std::cbrt(1.0 / 9.0 + std::sqrt(D));   // Cardano: y = t - P / (3 t)
-    // (For P > 0 the difference cancels; t^3 + t'^3 = 2/9 with t' = -P/(3t) gives a sum instead.)
-    const double y = P > 0 ? (2.0 / 9.0) / (t * t + q + q * q / (t * t)) : t - q / t;
+  /// The largest root u of u^4 - B u - A = 0 (B > 0, A >= -3 (B/4)^(4/3)) in
+  /// closed form: Ferrari's resolvent cubic y^3 + A y - B^2/8 = 0 by
+  /// Cardano, s = sqrt(2 y), u = (s + sqrt(2 B / s - s^2)) / 2.
+  static GRAINS_INLINE double root(double A, double B) {
+    const double h = B * B * (1.0 / 16.0), q = A * (1.0 / 3.0);
+    const double D = std::max(0.0, h * h + q * q * q);  // 0 exactly at the break
+    const double t = std::cbrt(h + std::sqrt(D));     // y = t - q / t
+    // (For A > 0 the difference cancels; with t' = -q/t, t^3 + t'^3 = 2 h, so y = 2 h / (t^2 - t t' + t'^2).)
+    const double y = A > 0 ? 2.0 * h / (t * t + q + q * q / (t * t)) : t - q / t;
     const double s = std::sqrt(2.0 * y);
-    const double u = 0.5 * (s + std::sqrt(std::max(0.0, (8.0 / 3.0) / s - s * s)));
+    return 0.5 * (s + std::sqrt(std::max(0.0, 2.0 * B / s - s * s)));
+  }
+  /// The same root by Halley's method from u on the stable branch (the last
+  /// step's root: the overlap moved little, one iteration, two after a
+  /// jolt). Cubic convergence: after a step du the root is within about
+  /// 3 (du/u)^3 u, so a step below 1e-4 u is the last (1e-12 of u, ~1e-11
+  /// of the force). Falls back to the closed form where f' vanishes (at the
+  /// break, where the branch ends).
+  static GRAINS_INLINE double root_from(double u, double A, double B) {
+    for (int k = 0; k < 20; ++k) {
+      const double u2 = u * u, u3 = u2 * u;
+      const double f = u3 * u - B * u - A, fp = 4.0 * u3 - B;
+      if (!(fp > 1e-6 * B)) return root(A, B);
+      const double du = 2.0 * f * fp / (2.0 * fp * fp - 12.0 * f * u2);
+      u -= du;
+      if (std::abs(du) <= 1e-4 * u) return u;
+    }
+    return root(A, B);
+  }
+  /// Johnson's scaled form: x = a / a_c, a_c = (9 pi w R*^2 / (8 E*))^(1/3),
+  /// F / F_c = x^3 - 2 x^(3/2), d / d_c = 3 x^2 - 4 x^(1/2), F_c = 3/2 pi w R*,
+  /// d_c = a_c^2 / (3 R*) (in these units A = dh / 3, B = 4/3, u = sqrt(x)).
+  static double x_of(double dh) {
+    const double u = root(dh / 3.0, 4.0 / 3.0);
     return u * u;
   }
   static double force(double x) { return x * x * x - 2.0 * x * std::sqrt(x); }  // F / F_c
@@ -68,10 +93,13 @@ struct JkrNormal {
   static constexpr const char* name = "jkr";
   static constexpr const char* tangential_name = "mindlin";
   static constexpr bool adhesive = true;
-  /// One double per contact: 1 while the pair is in contact (it may then be stretched to d_f).
+  /// One double per contact: sqrt(a) of the last step while the pair is in
+  /// contact (it may then be stretched to d_f), 0 when it is not: the
+  /// contact state and Newton's starting point.
   static constexpr int history_size = 1;
-  // PairParams::normal: 3/2 pi w; (9 pi w / (8 E*))^(1/3); its square / 3; 3^(2/3) times that
-  enum Slot { sFc, sAc, sDc, sBreak };
+  // PairParams::normal: 3/2 pi w; sqrt(2 pi w / E*); sqrt(8 pi w E*); 4/3 E*;
+  // |d_f| / R*^(1/3) = 3/4 (pi^2 w^2 / E*^2)^(1/3), and its cube
+  enum Slot { sFc, sC, sAdh, sK, sBreak, sBreak3 };
 
   static std::string summary() {
     return "JKR adhesion (Johnson-Kendall-Roberts 1971) for soft or large sticky grains: the force of the JKR "
@@ -89,11 +117,13 @@ struct JkrNormal {
 
   static std::string prepare(PairParams& p, const LawValues& v) {
     if (auto e = HertzNormal::prepare(p, v); !e.empty()) return e;
-    const double w = p.work_of_adhesion;
+    const double w = p.work_of_adhesion, E = p.E_eff;
     p.normal[sFc] = 1.5 * M_PI * w;
-    p.normal[sAc] = std::cbrt(9.0 * M_PI * w / (8.0 * p.E_eff));
-    p.normal[sDc] = p.normal[sAc] * p.normal[sAc] / 3.0;
-    p.normal[sBreak] = JkrCurve::kBreak * p.normal[sDc];
+    p.normal[sC] = std::sqrt(2.0 * M_PI * w / E);
+    p.normal[sAdh] = std::sqrt(8.0 * M_PI * w * E);
+    p.normal[sK] = 4.0 / 3.0 * E;
+    p.normal[sBreak] = 0.75 * std::cbrt(M_PI * M_PI * w * w / (E * E));
+    p.normal[sBreak3] = p.normal[sBreak] * p.normal[sBreak] * p.normal[sBreak];
     return {};
   }
 
@@ -108,29 +138,28 @@ struct JkrNormal {
     return r;
   }
 
-  /// Whether the pair is in contact at overlap d, updating its state `on`:
-  /// it forms on touching and lets go beyond d_f.
-  static GRAINS_INLINE bool engaged(double d, double R, const PairParams& p, double& on) {
-    if (d >= 0) {
-      on = 1.0;
-      return true;
-    }
-    if (on != 0.0 && d > -reach(R, p)) return true;
-    on = 0.0;
+  /// Whether the pair is in contact at overlap d, given its state `u`
+  /// (evaluate() keeps it): it forms on touching and lets go beyond d_f.
+  static GRAINS_INLINE bool engaged(double d, double R, const PairParams& p, double& u) {
+    if (d >= 0) return true;
+    if (u > 0 && -d * d * d < p.normal[sBreak3] * R) return true;  // (-d < |d_f| without a cube root)
+    u = 0.0;
     return false;
   }
 
-  static GRAINS_INLINE HertzState evaluate(double d, double d_dot, double R, double m, const PairParams& p) {
+  /// The normal state of an engaged contact; `u` is its state (0: it just touched).
+  static GRAINS_INLINE HertzState evaluate(double d, double d_dot, double R, double m, const PairParams& p,
+                                           double& u) {
     if (p.work_of_adhesion == 0) return HertzNormal::evaluate(d, d_dot, R, m, p);
-    const double cR = std::cbrt(R);
-    const double x = JkrCurve::x_of(d / (p.normal[sDc] * cR));
-    const double a = p.normal[sAc] * cR * cR * x;
-    const double fc = p.normal[sFc] * R;
-    const double scale = std::sqrt(m * (4.0 / 3.0) * p.E_eff * a);
-    const double rep = std::max(0.0, fc * x * x * x + p.damping * scale * d_dot);
+    const double A = R * d, B = R * p.normal[sC];
+    u = u > 0 ? JkrCurve::root_from(u, A, B) : JkrCurve::root(A, B);
+    const double a = u * u;
+    // 4 E* a^3 / (3 R*) = 4/3 E* a (d + c u), from the quartic (no division).
+    const double scale = std::sqrt(m * p.normal[sK] * a);
+    const double rep = std::max(0.0, p.normal[sK] * a * (d + p.normal[sC] * u) + p.damping * scale * d_dot);
     HertzState s;
-    s.force = rep - 2.0 * fc * x * std::sqrt(x);
-    s.load = std::max(0.0, s.force + 2.0 * fc);
+    s.force = rep - p.normal[sAdh] * a * u;
+    s.load = std::max(0.0, s.force + 2.0 * p.normal[sFc] * R);
     s.sqrt_Rd = a;
     s.scale = scale;
     return s;
@@ -148,7 +177,8 @@ struct JkrNormal {
       for (int b = 0; b < t.size(); ++b) {
         const PairParams& p = t(a, b);
         if (p.work_of_adhesion <= 0 || !(R > 0) || !(m > 0)) continue;
-        tn = std::min(tn, std::sqrt(m / (kNeckStiffness * p.normal[sFc] * R / (p.normal[sDc] * std::cbrt(R)))));
+        const double dc = reach(R, p) / JkrCurve::kBreak;  // Johnson's d_c
+        tn = std::min(tn, std::sqrt(m / (kNeckStiffness * p.normal[sFc] * R / dc)));
       }
     if (tn < s.time) s = {tn, "neck times", "t_neck = sqrt(m*/k_0) of the adhesive neck", 1.0, 0.3, false};
     return s;

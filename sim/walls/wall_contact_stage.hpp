@@ -74,15 +74,6 @@ struct WallSlots {
   void set_mask(unsigned m) const { tags[0] = static_cast<double>(m); }
 };
 
-/// Whether a law's contacts may hold beyond touching (JKR, sim/laws/normal_laws.hpp).
-template <class Law>
-constexpr bool holds_beyond_touching() {
-  if constexpr (requires { Law::normal_history; })
-    return Law::normal_history > 0;
-  else
-    return false;
-}
-
 template <class Law, bool Shapes = false>
 class WallStage final : public Stage {
  public:

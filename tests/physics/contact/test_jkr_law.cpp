@@ -66,6 +66,13 @@ TEST(JkrCurve, InvertsJohnsonsOverlapOnTheStableBranch) {
   EXPECT_NEAR(JkrCurve::x_of(0.0), std::pow(4.0 / 3.0, 2.0 / 3.0), 1e-12) << "first touch";
   EXPECT_NEAR(JkrCurve::x_of(std::pow(2.0, 4.0 / 3.0)), std::pow(2.0, 2.0 / 3.0), 1e-12) << "zero load";
   EXPECT_NEAR(JkrCurve::x_of(-JkrCurve::kBreak), x_f, 1e-7) << "the break";
+  // Newton from the last step's root (the law's path once a contact holds),
+  // from above and below, lands on the closed form's root.
+  for (double x = 1.2 * x_f; x < 1e3; x *= 1.1)
+    for (const double start : {0.9, 0.999, 1.001, 1.3}) {
+      const double u = std::sqrt(x), A = johnson_d(x) / 3.0, B = 4.0 / 3.0;
+      ASSERT_NEAR(JkrCurve::root_from(start * u, A, B), JkrCurve::root(A, B), 1e-11 * u) << x << " " << start;
+    }
   // Weak adhesion (d >> d_c): the overlap relation holds to rounding (no cancellation).
   for (double dh : {1e2, 1e4, 1e6, 1e8, 1e10, 1e12})
     EXPECT_NEAR(johnson_d(JkrCurve::x_of(dh)), dh, 1e-13 * dh) << "dh = " << dh;
@@ -104,7 +111,7 @@ TEST(JkrLaw, CycleFollowsJohnsonsCurveWithItsHysteresis) {
   for (double dh = -3; dh < 0; dh += 0.01) ASSERT_EQ(force(dh * dc), 0.0) << dh;
   EXPECT_EQ(state, 0.0);
   EXPECT_NEAR(force(0.0), -8.0 / 9.0 * Fc, 1e-12 * Fc) << "the jump in on touching";
-  EXPECT_EQ(state, 1.0);
+  EXPECT_GT(state, 0.0);
   double worst = 0;
   for (double dh = 0; dh <= 20; dh += 0.01) {  // loading
     const double x = johnson_x(dh);
