@@ -10,7 +10,11 @@
 //    same calibrated ratio as the normal slot), named "mindlin"; with the
 //    linear law, k_t = kappa k_n and gamma_t = x gamma_n, named "linear". The
 //    history is projected onto the current tangent plane each step and,
-//    while sliding, reset to the spring length that gives the Coulomb force.
+//    while sliding, reset so that the spring alone gives the Coulomb force
+//    (not spring and dashpot together: where the dashpot alone exceeds the
+//    limit, early in a strongly damped contact, that would set the spring
+//    against the slip, and friction would later push the slip along;
+//    docs/physics.md, Chung & Ooi's test 6).
 // Case-file keys: materials[].friction (and the normal law's keys).
 #include <cmath>
 
@@ -60,7 +64,7 @@ struct SpringTangential {
     if (ft2 > limit * limit) {
       if (ft2 > 0) {
         ft *= limit / std::sqrt(ft2);
-        xi = kt > 0 ? Eigen::Vector3d(-(ft + eta * vt) / kt) : Eigen::Vector3d::Zero();
+        xi = kt > 0 ? Eigen::Vector3d(-ft / kt) : Eigen::Vector3d::Zero();
       }
     }
     return ft;
