@@ -43,6 +43,7 @@ runs=(
   "mesh_drum|$cases/rotating_drum/case.yaml|--set particles.0.count=600 --set walls.0.start=0.2 --set walls.0.ramp=0.1 --set time.end=0.5 --set output.every=0.1"
   "mesh_hopper|$cases/hopper_discharge/case.yaml|--set particles.0.count=800 --set walls.1.start=0.1 --set time.end=0.25 --set output.every=0.05"
   "mesh_mixer_ellipsoids|$cases/mixer/case.yaml|--set particles.0.count=300 --set particles.0.shape={type: ellipsoid, aspect_ratio: 2} --set time.end=0.15 --set output.every=0.05"
+  "adhesive_pour|$cases/adhesive_pour/case.yaml|--set particles.0.count=1200 --set particles.0.placement.region.max=[0.002,0.002,0.003] --set time.end=0.03 --set output.every=0.006"
   "pour_spheres_moving_floor|$cases/pour_spheres/case.yaml|--set particles.0.count=400 --set particles.0.placement.region.max=[0.02,0.02,0.006] --set time.end=0.03 --set output.every=0.01 --set walls.0.velocity=[0.002,0,0.01]"
 )
 fail=0
