@@ -10,7 +10,7 @@
 //  - pull-off force 3/2 pi w R*: a sphere held to a plane wall pulled away by
 //    a body force of 99.5 % of it stays, at 100.5 % it leaves (the issue's
 //    0.5 %), also with a neighbour skin far below the pull-off separation
-//    (the lists' reach);
+//    (the lists' reach), and so against a cylinder and a triangle mesh;
 //  - a two-sphere collision without damping sticks below the sticking
 //    velocity v_s = sqrt(2 W / m*), W the work of Johnson's curve between
 //    touching and the break (the energy balance of Thornton & Ning 1998; see
@@ -150,7 +150,11 @@ TEST(JkrLaw, WithoutAdhesionIsHertzExactly) {
 // overlap, near -d_c). Returns its overlap after `end` seconds.
 // (Held: the final overlap is above the break -3^(2/3) d_c; torn off, it is
 // well beyond it after 5 ms, having crept past the fold.)
-double pulled(double f, double g, const std::string& neighbor = "", double end = 0.005) {
+// `wall`: the wall whose surface near the sphere is the plane x = 0 with
+// normal +x (default that plane; PulledOffEveryWallKind gives the others).
+const std::string kPlaneWall = "{type: plane, point: [0, 0, 0], normal: [1, 0, 0], material: m}";
+double pulled(double f, double g, const std::string& neighbor = "", double end = 0.005,
+              const std::string& wall = kPlaneWall, double y0 = 0) {
   const double w = 2 * g, Es = 1.0 / (2 * (1 - nu * nu) / E);
   const auto [Fc, dc] = scales(w, Es, R);
   double lo = 1, hi = 2;  // x of F/F_c = -0.995 above x = 1
@@ -167,8 +171,8 @@ double pulled(double f, double g, const std::string& neighbor = "", double end =
   y << "materials:\n  - {name: m, density: " << rho << ", youngs_modulus: " << E << ", poisson_ratio: " << nu
     << ", restitution: 0.5, surface_energy: " << g << "}\n";
   y << "contact: {model: jkr, tangential: none}\n";
-  y << "particles:\n" << single("a", "m", sim::Vec3(R - d0, 0, 0), R, sim::Vec3::Zero());
-  y << "walls:\n  - {type: plane, point: [0, 0, 0], normal: [1, 0, 0], material: m}\n";
+  y << "particles:\n" << single("a", "m", sim::Vec3(R - d0, y0, 0), R, sim::Vec3::Zero());
+  y << "walls:\n  - " << wall << "\n";
   if (!neighbor.empty()) y << "neighbor: " << neighbor << "\n";
   y << "time: {dt_rayleigh: 0.1, end: " << end << "}\n";
   auto s = from_yaml(y.str());
@@ -197,6 +201,29 @@ TEST(JkrLaw, PullOffForceIsThreeHalvesPiWR) {
   EXPECT_LT(pulled(1.005, 0.05), -10 * wall_break(0.05)) << "pulled off above it";
   EXPECT_GT(pulled(0.995, 0.4), -wall_break(0.4));
   EXPECT_LT(pulled(1.005, 0.4), -10 * wall_break(0.4));
+}
+
+TEST(JkrLaw, PulledOffEveryWallKind) {
+  // The same hold and release against a cylinder (the sphere inside it, its
+  // surface through x = 0; R* = R, the wall's curvature neglected as with
+  // every law) and a triangle mesh (a closed cube whose face x = 0 faces
+  // the sphere, the sphere over the middle of a triangle): the law, its
+  // reach and the wall's contact code together.
+  std::ostringstream cyl, mesh;
+  cyl.precision(17);
+  mesh.precision(17);
+  cyl << "{type: cylinder, base: [" << 20 * R << ", 0, " << -2 * R << "], axis: [0, 0, 1], radius: " << 20 * R
+      << ", height: " << 4 * R << ", material: m}";
+  mesh << "{type: mesh, file: " << GRAINS_SOURCE_DIR << "/tests/data/meshes/cube.off, scale: " << R
+       << ", translate: [" << -R << ", 0, 0], material: m}";
+  // (On the cylinder the sphere sits on the line y = 0 where its surface is
+  // at x = 0; on the cube, off the diagonal edge of the face's two triangles.)
+  for (const auto& [wall, y0] : {std::pair{cyl.str(), 0.0}, std::pair{mesh.str(), 0.3 * R}}) {
+    SCOPED_TRACE(wall);
+    EXPECT_GT(pulled(0.995, 0.05, "", 0.005, wall, y0), -wall_break(0.05)) << "held";
+    EXPECT_LT(pulled(1.005, 0.05, "", 0.005, wall, y0), -10 * wall_break(0.05)) << "pulled off";
+    EXPECT_GT(pulled(0.995, 0.05, "{skin: 1e-6}", 0.005, wall, y0), -wall_break(0.05)) << "tiny skin";
+  }
 }
 
 TEST(JkrLaw, ContactInTensionIsHeldWithATinySkin) {
