@@ -22,15 +22,7 @@ constexpr double E = 1e7, nu = 0.3, rho = 2500, R = 0.001;
 const double mass = rho * 4.0 / 3.0 * M_PI * R * R * R;
 
 TEST(DmtLaw, WithoutAdhesionIsHertzExactly) {
-  for (const bool wall : {false, true}) {
-    const auto h = impact(wall, E, nu, rho, R, 0.3, 0.6, 200, "{model: hertz, tangential: none}");
-    const auto d = impact(wall, E, nu, rho, R, 0.3, 0.6, 200, "{model: dmt, tangential: none}");
-    SCOPED_TRACE(wall ? "sphere-wall" : "sphere-sphere");
-    EXPECT_EQ(d.restitution, h.restitution);
-    EXPECT_EQ(d.contact_time, h.contact_time);
-    EXPECT_EQ(d.max_overlap, h.max_overlap);
-    EXPECT_NEAR(h.restitution, 0.6, 0.01);
-  }
+  expect_hertz_impacts("{model: dmt, tangential: none}", E, nu, rho, R);
 }
 
 // A sphere (R, g surface energy, both bodies one material: w = 2 g) resting on
