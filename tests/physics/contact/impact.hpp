@@ -75,6 +75,29 @@ inline ImpactResult impact(bool wall, double E, double nu, double rho, double R,
   return {vout / vrel, t_out - t_in, dmax};
 }
 
+/// The case of one sphere (radius R, centre (x0, y0, 0), at rest) of a
+/// material with surface energy g and restitution 0.5 next to `wall` (whose
+/// surface there is the plane x = 0, facing +x), pulled along +x by a body
+/// acceleration `pull`; `contact`: the contact section; `neighbor`: an
+/// optional neighbor section. For the pull-off tests of adhesive laws.
+inline std::string pulled_case(double E, double nu, double rho, double R, double g, double pull,
+                               const std::string& contact, const std::string& wall, double x0, double y0,
+                               const std::string& neighbor, double end) {
+  std::ostringstream y;
+  y.precision(17);
+  y << "domain: {min: [" << -2 * R << ", " << -2 * R << ", " << -2 * R << "], max: [" << 40 * R << ", " << 2 * R
+    << ", " << 2 * R << "]}\n";
+  y << "gravity: [" << pull << ", 0, 0]\n";
+  y << "materials:\n  - {name: m, density: " << rho << ", youngs_modulus: " << E << ", poisson_ratio: " << nu
+    << ", restitution: 0.5, surface_energy: " << g << "}\n";
+  y << "contact: " << contact << "\n";
+  y << "particles:\n" << single("a", "m", sim::Vec3(x0, y0, 0), R, sim::Vec3::Zero());
+  y << "walls:\n  - " << wall << "\n";
+  if (!neighbor.empty()) y << "neighbor: " << neighbor << "\n";
+  y << "time: {dt_rayleigh: 0.1, end: " << end << "}\n";
+  return y.str();
+}
+
 /// An adhesive normal law without adhesion (the materials have no surface
 /// energy) is the Hertz law bit for bit: the impacts of two spheres and of a
 /// sphere on a wall, at 0.3 m/s with e = 0.6, give identical restitution,

@@ -35,18 +35,9 @@ double pulled(double f, double g, const std::string& contact, double end = 0.005
   const double Estar = 1.0 / (2 * (1 - nu * nu) / E);
   const double K = 4.0 / 3.0 * Estar * std::sqrt(R);
   const double d0 = std::pow(0.005 * Fc / K, 2.0 / 3.0);  // the balance at f = 0.995
-  std::ostringstream y;
-  y.precision(17);
-  y << "domain: {min: [" << -2 * R << ", " << -2 * R << ", " << -2 * R << "], max: [" << 40 * R << ", " << 2 * R
-    << ", " << 2 * R << "]}\n";
-  y << "gravity: [" << f * Fc / mass << ", 0, 0]\n";
-  y << "materials:\n  - {name: m, density: " << rho << ", youngs_modulus: " << E << ", poisson_ratio: " << nu
-    << ", restitution: 0.5, surface_energy: " << g << "}\n";
-  y << "contact: " << contact << "\n";
-  y << "particles:\n" << single("a", "m", sim::Vec3(R - d0, 0, 0), R, sim::Vec3::Zero());
-  y << "walls:\n  - {type: plane, point: [0, 0, 0], normal: [1, 0, 0], material: m}\n";
-  y << "time: {dt_rayleigh: 0.1, end: " << end << "}\n";
-  auto s = from_yaml(y.str());
+  const std::string y = pulled_case(E, nu, rho, R, g, f * Fc / mass, contact,
+                                    "{type: plane, point: [0, 0, 0], normal: [1, 0, 0], material: m}", R - d0, 0, "", end);
+  auto s = from_yaml(y);
   auto& sc = s.scene;
   s.pipeline.initialize(sc);
   EXPECT_NEAR(R - sc.particles.x[0][0], d0, 1e-3 * d0) << "placed at the balance";

@@ -155,19 +155,9 @@ double pulled(double f, double g, const std::string& neighbor = "", double end =
     (johnson_F(mid) < -0.995 ? lo : hi) = mid;
   }
   const double d0 = dc * johnson_d(lo);
-  std::ostringstream y;
-  y.precision(17);
-  y << "domain: {min: [" << -2 * R << ", " << -2 * R << ", " << -2 * R << "], max: [" << 40 * R << ", " << 2 * R
-    << ", " << 2 * R << "]}\n";
-  y << "gravity: [" << f * Fc / mass << ", 0, 0]\n";
-  y << "materials:\n  - {name: m, density: " << rho << ", youngs_modulus: " << E << ", poisson_ratio: " << nu
-    << ", restitution: 0.5, surface_energy: " << g << "}\n";
-  y << "contact: {model: jkr, tangential: none}\n";
-  y << "particles:\n" << single("a", "m", sim::Vec3(R - d0, y0, 0), R, sim::Vec3::Zero());
-  y << "walls:\n  - " << wall << "\n";
-  if (!neighbor.empty()) y << "neighbor: " << neighbor << "\n";
-  y << "time: {dt_rayleigh: 0.1, end: " << end << "}\n";
-  auto s = from_yaml(y.str());
+  const std::string y = pulled_case(E, nu, rho, R, g, f * Fc / mass, "{model: jkr, tangential: none}", wall, R - d0,
+                                    y0, neighbor, end);
+  auto s = from_yaml(y);
   auto& sc = s.scene;
   EXPECT_LT(d0, -0.5 * dc) << "the equilibrium is in tension";
   // At its equilibrium the sphere does not touch the wall (negative
