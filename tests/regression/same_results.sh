@@ -11,6 +11,9 @@
 # cells; compared with tests/parallel/compare_frames --wall-cells when the
 # files differ: since 2026-11-26 they also carry each wall's record for
 # `grains analyze`, COMPARE = that tool, default build/tests/parallel/compare_frames).
+# OLD must read every case run here: adhesive_pour needs contact.model jkr
+# (c04596a on), and frictional results changed on purpose at 9f362b0 (the
+# tangential spring), so compare against 9f362b0 or later.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 old=${1:?usage: same_results.sh OLD-COMMIT-OR-BINARY [NEW-BINARY] [OUTDIR]}
