@@ -337,6 +337,9 @@ std::string describe(const Simulation& s) {
   o << "time step: " << sc.clock.dt << " s (" << sc.clock.dt / s.rayleigh_time << " Rayleigh times), "
     << sc.clock.n_steps << " steps to t = " << sc.clock.end_time << " s\n";
   o << "contact history per contact: " << sc.neighbors.history_size() << " doubles\n";
+  if (sc.neighbors.reach() > 0)  // a law whose contacts hold in tension (JKR)
+    o << "contacts hold up to " << sc.neighbors.reach() << " m beyond touching (the pull-off separation of the "
+      << "largest grains against a wall); the neighbour lists, wall near lists and ghosts reach that far\n";
   o << "per-particle fields:";
   for (const auto& f : sc.particles.field_names()) o << " " << f;
   o << "\nstep pipeline:\n";
