@@ -44,18 +44,8 @@ class PairContactStage final : public Stage {
       pc.may_touch = false;
       return false;
     }
-    double* hist = H > 0 ? nl.history.data() + static_cast<std::size_t>(k) * H : nullptr;
-    if constexpr (holds_beyond_touching<Law>()) {
-      // A law whose contacts outlive touching (JKR): within its reach but
-      // apart, only a pair already in contact is one (its history is all
-      // zero otherwise).
-      const double rs = p.radius[i] + p.radius[j];
-      if (d2 >= rs * rs && hist[Law::history_size - 1] == 0.0) {
-        pc.may_touch = false;
-        return false;
-      }
-    }
     pc.may_touch = true;
+    double* hist = H > 0 ? nl.history.data() + static_cast<std::size_t>(k) * H : nullptr;
     // Sphere-sphere geometry (as contact::sphere_sphere, with R* and m*
     // from the list). The contact point lies on the line of centres, so
     // the lever arms are -li n and +lj n: one cross product each for the
