@@ -7,10 +7,12 @@
 // Scaled by the load-controlled pull-off point, F_c = 3/2 pi w R*,
 // a_c = (9 pi w R*^2 / (8 E*))^(1/3), d_c = a_c^2 / (3 R*), x = a / a_c:
 //   F / F_c = x^3 - 2 x^(3/2),   d / d_c = 3 x^2 - 4 x^(1/2)
-// (docs/dev/adhesion_sources.md). The law inverts the second relation in
-// closed form on the stable branch (a quartic in sqrt(x) by Ferrari's
-// resolvent cubic, evaluated without cancellation) and so needs no
-// iteration and no state for the force.
+// (docs/dev/adhesion_sources.md). With u = sqrt(a) the overlap relation
+// is a quartic in u whose largest root is the stable branch: a contact that
+// has just formed takes it in closed form (Ferrari's resolvent cubic,
+// evaluated without cancellation), a contact that holds by Halley's method
+// from the last step's root, which it keeps as its contact state (one
+// iteration in a bed; no cube root).
 //
 // Hysteresis: a contact forms when the surfaces touch (d >= 0, where the
 // force jumps to -8/9 F_c) and then persists in tension, at negative
@@ -18,9 +20,10 @@
 // displacement control, d_f = -3^(2/3) d_c (a = a_c / 3^(2/3), F = -5/9 F_c:
 // the vertical tangent of the d(a) curve), where it snaps off. (LAMMPS's jkr
 // lets go earlier, at d = -d_c where F = -F_c.) Whether a pair is in contact
-// is one double of history after the tangential and rolling springs'; the
-// neighbour lists, ghosts and wall near lists reach d_f further
-// (NeighborList::reach), so a stretched contact is never missed.
+// is that same double of history (0: not in contact), after the tangential
+// and rolling springs'; the neighbour lists, ghosts and wall near lists
+// reach d_f further (NeighborList::reach), so a stretched contact is never
+// missed.
 //
 // Damping: the Hertz part's calibrated dashpot with the Hertz stiffness of
 // the JKR contact radius, eta = a_damp sqrt(m* 4/3 E* a) (exactly Hertz's when
@@ -95,7 +98,7 @@ struct JkrNormal {
   static constexpr bool adhesive = true;
   /// One double per contact: sqrt(a) of the last step while the pair is in
   /// contact (it may then be stretched to d_f), 0 when it is not: the
-  /// contact state and Newton's starting point.
+  /// contact state and Halley's starting point.
   static constexpr int history_size = 1;
   // PairParams::normal: 3/2 pi w; sqrt(2 pi w / E*); sqrt(8 pi w E*); 4/3 E*;
   // |d_f| / R*^(1/3) = 3/4 (pi^2 w^2 / E*^2)^(1/3), and its cube
@@ -172,11 +175,12 @@ struct JkrNormal {
   static StepScale step_scale(const Table& t, const GrainExtremes& g) {
     StepScale s = HertzNormal::step_scale(t, g);
     const double R = 0.5 * g.min_radius, m = 0.5 * g.min_mass;
+    if (!(R > 0) || !(m > 0)) return s;
     double tn = std::numeric_limits<double>::infinity();
     for (int a = 0; a < t.size(); ++a)
       for (int b = 0; b < t.size(); ++b) {
         const PairParams& p = t(a, b);
-        if (p.work_of_adhesion <= 0 || !(R > 0) || !(m > 0)) continue;
+        if (p.work_of_adhesion <= 0) continue;
         const double dc = reach(R, p) / JkrCurve::kBreak;  // Johnson's d_c
         tn = std::min(tn, std::sqrt(m / (kNeckStiffness * p.normal[sFc] * R / dc)));
       }

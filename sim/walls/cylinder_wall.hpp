@@ -78,7 +78,7 @@ struct CylinderWall : WallCommon {
         return;
       }
     }
-    if (contact::sphere_cylinder(p.x[i], p.radius[i] + slots.reach, surface, g)) emit(g, 0);
+    if (contact::sphere_cylinder(p.x[i], slots.grown(p.radius[i]), surface, g)) emit(g, 0);
   }
 
   bool touches(const Vec3& x, double r) const {

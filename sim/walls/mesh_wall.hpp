@@ -199,7 +199,7 @@ struct MeshWall : WallCommon {
     // Spheres: the common case, one triangle whose face the centre is over,
     // straight to the contact (what sphere_contacts computes for it).
     const Vec3 x = to_body(p.x[i]);
-    const double r = p.radius[i] + slots.reach;
+    const double r = slots.grown(p.radius[i]);
     const int t = surface->sphere_screen(x, r, tris);
     if (t == contact::MeshSurface::kNone) return;
     if (t >= 0) {

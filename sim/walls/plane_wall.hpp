@@ -99,7 +99,7 @@ struct PlaneWall : WallCommon {
           return;
         }
       }
-      if (contact::sphere_plane(p.x[i], p.radius[i] + slots.reach, point, normal, g)) emit(g, 0);
+      if (contact::sphere_plane(p.x[i], slots.grown(p.radius[i]), point, normal, g)) emit(g, 0);
       return;
     }
     if constexpr (Shapes) {
@@ -108,7 +108,7 @@ struct PlaneWall : WallCommon {
         return;
       }
     }
-    if (contact::sphere_annulus(p.x[i], p.radius[i] + slots.reach, annulus(), g)) emit(g, 0);
+    if (contact::sphere_annulus(p.x[i], slots.grown(p.radius[i]), annulus(), g)) emit(g, 0);
   }
 
   bool touches(const Vec3& x, double r) const {

@@ -49,14 +49,21 @@ struct WallContact {
 };
 
 /// A particle's history slots of one wall, as a kind's contacts() sees them.
-template <int H, bool Tagged>
+template <int H, bool Tagged, bool Beyond = false>
 struct WallSlots {
   double* hist;  // H doubles per slot (null when H = 0)
   double* tags;  // tagged kinds with history: the mask of the slots held, then 3 doubles per slot
   int n = 1;     // slots
-  /// How far beyond touching a contact may hold (JKR; else 0): the kinds
-  /// look for contacts of spheres of radius p.radius[i] + reach.
+  /// How far beyond touching a contact may hold (laws with Beyond, JKR).
   double reach = 0;
+  /// The radius a kind looks for contacts of a sphere of radius r with: r
+  /// grown by the reach for such a law, r itself (no code) for the others.
+  GRAINS_INLINE double grown(double r) const {
+    if constexpr (Beyond)
+      return r + reach;
+    else
+      return r;
+  }
   static constexpr bool keeps_history() { return H > 0; }
   bool held(int k) const {
     if constexpr (H == 0) {
@@ -134,7 +141,7 @@ class WallStage final : public Stage {
       }
       double* hist = H > 0 ? hist0 + i * static_cast<std::size_t>(WH) : nullptr;
       double* tags = Tagged ? tags0 + i * static_cast<std::size_t>(WT) : nullptr;
-      const WallSlots<H, Tagged> sl{hist, tags, slots, Beyond ? reach : 0.0};
+      const WallSlots<H, Tagged, Beyond> sl{hist, tags, slots, reach};
       unsigned used = 0;  // the slots a contact used this step
       const std::span<const std::uint32_t> row =
           item_start ? std::span<const std::uint32_t>(item + item_start[m], item + item_start[m + 1])

@@ -13,7 +13,10 @@
 //                              emit(geometry, slot) for each contact of particle i (sphere, or
 //                              ellipsoid when Shapes), slot the history slot it continues (< 32;
 //                              -1: none free, no history); slots.held(k): slot k holds history,
-//                              slots.keeps_history(), slots.tag(k) (tagged kinds)
+//                              slots.keeps_history(), slots.tag(k) (tagged kinds); spheres are
+//                              looked for with radius slots.grown(r) (a law whose contacts hold
+//                              beyond touching, JKR, grows it by its reach; the stage corrects the
+//                              overlap)
 //   touches(x, r), touches(ellipsoid)
 //                              any contact at all (insertion obstacles, `grains analyze`)
 //   translate(d), position()   prescribed motion and the checkpointed pose (a kind with its own
