@@ -99,6 +99,9 @@ class CaseParser {
     parse_contact(root["contact"]);
     check_adhesion();
     parse_particles(root["particles"]);
+    if (!root["particles"] && !root["insert"])
+      v_.error(root, "", "missing required key 'particles' (particle sets (see particles)); a case needs particles, or "
+                         "insert[] to add grains during the run");
     parse_walls(root["walls"]);
     parse_time(root["time"]);
     parse_neighbor(root["neighbor"]);
@@ -618,6 +621,7 @@ class CaseParser {
       c.every = v_.number(e, d, "every", ctx, 0);
       c.until = v_.number(e, d, "until", ctx, 0);
       if (e["until"] && c.until < c.at) v_.error(e["until"], ctx, "until must not be before at");
+      c.times = v_.integer(e, d, "times", ctx, 0);
       c.orientations = static_cast<int>(v_.integer(e, d, "orientations", ctx, 8));
       c.spacing = v_.number(e, d, "spacing", ctx, 0);
       c.margin = v_.number(e, d, "margin", ctx, 0.25);

@@ -140,7 +140,9 @@ OutputStages add_output_stages(Simulation& s, const RunOptions& opt) {
   double growth_rate = s.c.scene.growth.enabled ? s.c.scene.growth.rate : 0.0;
   for (const auto& ph : s.c.scene.growth.phases) growth_rate = std::max(growth_rate, ph.rate);
   const double growth_speed = growth_rate * (s.scene.domain.hi - s.scene.domain.lo).norm();
-  auto blow = std::make_unique<BlowUpCheck>(s.scene, s.rayleigh_time, 200, growth_speed);
+  // Inserted grains come in at their own speed.
+  auto blow = std::make_unique<BlowUpCheck>(s.scene, s.rayleigh_time, 200,
+                                            growth_speed + s.c.scene.fastest_insertion());
   BlowUpCheck* blow_up = blow.get();
   s.pipeline.add(std::move(blow));
   VtkOutput* vtk = nullptr;

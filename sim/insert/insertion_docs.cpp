@@ -36,6 +36,11 @@ std::vector<EffectDoc> insertion_docs() {
         key("at", K::Number, "time of the first insertion; 0: at the end of the first step").def("0").si("s").in(0, inf),
         key("every", K::Number, "time between insertions; absent: insert once").si("s").in(0, inf, true),
         key("until", K::Number, "no insertion after this time").def("the end").si("s").in(0, inf, true),
+        key("times", K::Integer,
+            "insertions at most (with every): e.g. a deposit of exactly times x count grains, whatever the "
+            "rounding of every to whole time steps")
+            .def("no limit")
+            .in(1, 1e12),
         key("orientations", K::Integer,
             "fft: trial orientations, one overlap field each, per round (clumps with random orientation; "
             "ellipsoids that turn use one field of their core, the ball of the smallest semi-axis, and "

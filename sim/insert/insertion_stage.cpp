@@ -86,6 +86,7 @@ InsertionStage::InsertionStage(std::vector<InsertionConfig> entries, double dt, 
     sc.first = std::max<std::int64_t>(1, std::llround(c.at / dt));
     sc.every = c.every > 0 ? std::max<std::int64_t>(1, std::llround(c.every / dt)) : 0;
     sc.last = c.until > 0 ? std::llround(c.until / dt) : std::numeric_limits<std::int64_t>::max();
+    sc.times = c.times;
     sched_.push_back(sc);
   }
 }
@@ -101,7 +102,10 @@ std::int64_t InsertionStage::event_at(std::size_t e, std::int64_t n) const {
   const auto& sc = sched_[e];
   if (n < sc.first || n > sc.last) return -1;
   if (n == sc.first) return 0;
-  if (sc.every > 0 && (n - sc.first) % sc.every == 0) return (n - sc.first) / sc.every;
+  if (sc.every > 0 && (n - sc.first) % sc.every == 0) {
+    const std::int64_t k = (n - sc.first) / sc.every;
+    return sc.times > 0 && k >= sc.times ? -1 : k;
+  }
   return -1;
 }
 

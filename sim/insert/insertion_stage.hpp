@@ -43,7 +43,7 @@ class InsertionStage final : public Stage {
 
  private:
   struct Schedule {
-    std::int64_t first = 1, every = 0, last = 0;
+    std::int64_t first = 1, every = 0, last = 0, times = 0;  // times: events at most (0: no limit)
   };
   /// Index of the insertion entry e does at step n, or -1.
   std::int64_t event_at(std::size_t e, std::int64_t n) const;

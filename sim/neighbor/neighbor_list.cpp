@@ -65,7 +65,8 @@ struct CellGrid {
 
 bool NeighborList::needs_rebuild(const ParticleStore& p, const Walls& walls, double time) const {
   const std::size_t n = p.n_owned();
-  if (x_build_.size() != n) return true;
+  // Never built (a scene may start empty and fill by insertion): build.
+  if (x_build_.size() != n || row_start.empty()) return true;
   double m2 = 0;
   for (std::size_t i = 0; i < n; ++i) m2 = std::max(m2, (p.x[i] - x_build_[i]).squaredNorm());
   const double m = std::sqrt(m2) + growth_;

@@ -134,9 +134,9 @@ void add_arkode(Pipeline& p, const Scene& s, const SceneConfig& c, const SceneNe
   const auto& m = s.particles.mass;
   if (!m.empty()) scales.mass = *std::min_element(m.begin(), m.end());
   // The scene's speed, as the blow-up check estimates it: the fastest initial
-  // speed, the fall through the domain and the fastest wall; a scene where
+  // speed (inserted grains' too), the fall through the domain and the fastest wall; a scene where
   // nothing moves takes the speed of a radius per Rayleigh time.
-  double v0 = 0;
+  double v0 = c.fastest_insertion();
   for (std::size_t i = 0; i < s.particles.n_owned(); ++i) v0 = std::max(v0, s.particles.v[i].norm());
   scales.speed = v0 + std::sqrt(2 * s.gravity.norm() * (s.domain.hi - s.domain.lo).norm()) + s.walls.max_speed();
   if (!(scales.speed > 0)) {

@@ -2,6 +2,7 @@
 // A validated, unit-explicit description of a scene: what io::Case hands to
 // sim. Every value here is in SI units and already range-checked; `where`
 // strings (file:line:column) let set-up errors point back at the case file.
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -93,6 +94,7 @@ struct InsertionConfig {
   double at = 0;              // time of the first insertion (s); 0: after the first step
   double every = 0;           // s between insertions; 0: once
   double until = 0;           // no insertion after this time (s); 0: the end of the run
+  std::int64_t times = 0;     // insertions at most; 0: no limit
   int orientations = 8;       // trial orientations per field (non-spherical grains with random orientation)
   double spacing = 0;         // fft grid spacing (m); 0: a quarter of the grain's largest ball
   double margin = 0.25;       // fft: shape balls inflated by margin x the largest ball's radius
@@ -159,6 +161,14 @@ struct SceneConfig {
   std::string growth_where;
   std::vector<InsertionConfig> insertions;  // insert[]: grains added during the run
   std::vector<std::string> warnings;  // filled by build_scene
+
+  /// The fastest speed grains are given at insertion (0 without insertions):
+  /// part of the scene's speed scale (blow-up check, ARKODE's scales).
+  double fastest_insertion() const {
+    double v = 0;
+    for (const auto& in : insertions) v = std::max(v, in.grains.velocity.norm());
+    return v;
+  }
 };
 
 }  // namespace grains::sim

@@ -22,7 +22,7 @@ std::vector<EffectDoc> scene_docs() {
                 key("gravity", K::Vec3, "gravitational acceleration; absent or zero: no gravity stage").si("m/s^2"),
                 key("materials", K::List, "materials (see materials)").req(),
                 key("contact", K::Map, "contact law slots and pair overrides (see contact)"),
-                key("particles", K::List, "particle sets (see particles)").req(),
+                key("particles", K::List, "particle sets (see particles); may be left out when insert[] adds all the grains"),
                 key("walls", K::List, "walls (see walls.<type>: one section per wall kind)"),
                 key("time", K::Map, "time stepping (see time)").req(),
                 key("neighbor", K::Map, "neighbour lists (see neighbor)"),

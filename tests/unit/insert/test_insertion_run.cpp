@@ -222,5 +222,54 @@ TEST(InsertionRun, CaseErrorsSayWhatAndWhere) {
   EXPECT_NE(m.find("insert: expected a non-empty list of insertions"), std::string::npos) << m;
 }
 
+// A scene may start empty and be filled by insertion alone (no particles
+// key); `times` caps the number of insertions whatever the rounding of
+// `every` to whole steps: 7 insertions of 3 grains, although `every` and
+// `until` would allow 10.
+TEST(InsertionRun, AnEmptySceneFillsByInsertionAndTimesCapsTheEvents) {
+  const std::string yaml = R"(
+domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.012]}
+gravity: [0, 0, -9.81]
+materials:
+  - {name: grain, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3, restitution: 0.5, friction: 0.5}
+walls:
+  - {type: plane, name: floor, point: [0, 0, 0], normal: [0, 0, 1], material: grain}
+time: {dt: 4.0e-6, end: 0.006}
+output: {vtk: false, progress: false}
+insert:
+  - {material: grain, radius: 0.0005, count: 3, velocity: [0, 0, -1], method: random,
+     region: {min: [0, 0, 0.008], max: [0.01, 0.01, 0.012]}, every: 0.0005, until: 0.0049, times: 7}
+)";
+  TempDir tmp("empty_start");
+  auto simu = io::make_simulation(io::parse_case(yaml, "case.yaml"));
+  EXPECT_EQ(simu.scene.particles.n_owned(), 0u);
+  const auto r = io::run(simu, quiet_into(tmp.path));
+  EXPECT_EQ(simu.scene.particles.n_owned(), 21u);
+  EXPECT_EQ(r.lost_particles, 0);
+  // The grains fell onto the floor: the walls and lists were built although
+  // the scene began with nothing in it.
+  for (std::size_t i = 0; i < simu.scene.particles.n_owned(); ++i) {
+    EXPECT_GT(simu.scene.particles.x[i].z(), 0.00045);
+    EXPECT_LT(simu.scene.particles.x[i].z(), 0.008);
+  }
+  // Without gravity the inserted grains' own speed is the scene's speed
+  // scale: the blow-up check (which knew only initial speeds, the fall and
+  // the walls) lets them fly at 1 m/s.
+  {
+    TempDir tmp2("empty_start_no_gravity");
+    std::string g = yaml;
+    g.replace(g.find("gravity: [0, 0, -9.81]"), 22, "gravity: [0, 0, 0]");
+    auto s2 = io::make_simulation(io::parse_case(g, "case.yaml"));
+    EXPECT_NO_THROW(io::run(s2, quiet_into(tmp2.path)));
+    EXPECT_EQ(s2.scene.particles.n_owned(), 21u);
+  }
+  // Without particles and without insert[] a case says what is missing.
+  const std::string m = errors_of(yaml.substr(0, yaml.find("insert:")));
+  EXPECT_NE(m.find("missing required key 'particles' (particle sets (see particles)); a case needs particles, or "
+                   "insert[] to add grains during the run"),
+            std::string::npos)
+      << m;
+}
+
 }  // namespace
 }  // namespace grains::test
