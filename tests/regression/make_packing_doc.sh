@@ -7,6 +7,8 @@
 #   bash tests/regression/make_packing_doc.sh          # CI + long: ~1-2 h on 2 cores
 #   bash tests/regression/make_packing_doc.sh --ci     # CI sizes only: ~5 min
 #   bash tests/regression/make_packing_doc.sh --reuse  # keep records already in $RESULTS
+#   bash tests/regression/make_packing_doc.sh --section adhesive  # only the adhesive deposits
+#                                                      # (CI + long, ~25 min) and their section
 #
 # Environment: BUILD (build folder, default build; configured and built if
 # needed), RESULTS (default $BUILD/packing-results), JOBS (parallel test
@@ -22,20 +24,30 @@ BUILD="${BUILD:-$ROOT/build}"
 RESULTS="${RESULTS:-$BUILD/packing-results}"
 CI_ONLY=0
 REUSE=0
-for a in "$@"; do
-  case "$a" in
+SECTION=
+while [ $# -gt 0 ]; do
+  case "$1" in
     --ci) CI_ONLY=1 ;;
     --reuse) REUSE=1 ;;
-    *) echo "usage: $0 [--ci] [--reuse]" >&2; exit 2 ;;
+    --section) SECTION="${2:-}"; shift ;;
+    *) echo "usage: $0 [--ci] [--reuse] [--section adhesive]" >&2; exit 2 ;;
   esac
+  shift
 done
+case "$SECTION" in
+  ''|adhesive) ;;
+  *) echo "$0: unknown section '$SECTION'; known: adhesive" >&2; exit 2 ;;
+esac
 if [ ! -f "$BUILD/CMakeCache.txt" ]; then
   cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null || exit 1
 fi
-cmake --build "$BUILD" -j2 --target grains test_packing test_packing_long test_ellipsoid_packing \
+cmake --build "$BUILD" -j2 --target grains test_packing test_packing_long test_ellipsoid_packing test_adhesive_packing \
   test_clump_regression test_clump_regression_long >/dev/null || exit 1
 mkdir -p "$RESULTS"
-[ "$REUSE" = 1 ] || rm -f "$RESULTS"/*.json "$RESULTS"/*.commit
+if [ "$REUSE" = 0 ]; then
+  if [ -n "$SECTION" ]; then rm -f "$RESULTS"/$SECTION*.json "$RESULTS"/$SECTION*.commit
+  else rm -f "$RESULTS"/*.json "$RESULTS"/*.commit; fi
+fi
 export GRAINS_RESULTS_DIR="$RESULTS"
 status=0
 commit="$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo '?')"
@@ -59,11 +71,21 @@ run() {
 }
 
 T="$BUILD/tests/regression"
+if [ "$SECTION" = adhesive ]; then
+  run adhesive_ci adhesive_ci "$T/test_adhesive_packing" --gtest_filter=Packing.AdhesiveDepositionSweep
+  [ "$CI_ONLY" = 1 ] || run adhesive_long adhesive_long "$T/test_packing_long" --gtest_filter=PackingLong.AdhesiveDepositionSweep
+  cat > "$RESULTS/adhesive_meta.json" <<EOF
+{"date": "$(date -u +%Y-%m-%d)", "machine": "$(lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1), $(nproc) cores"}
+EOF
+  /usr/bin/python3 "$HERE/make_packing_doc.py" "$RESULTS" --section adhesive || exit 1
+  exit $status
+fi
 run friction_ci friction_sweep_ci "$T/test_packing" --gtest_filter=Packing.FrictionSweepPouredSpheres
 run beverloo_ci beverloo_ci "$T/test_packing" --gtest_filter=Packing.SiloDischargeFollowsBeverloo
 run jamming_ci jamming_ci "$T/test_packing" --gtest_filter=Packing.JammedFrictionlessSpheres
 run ellipsoid_ci ellipsoid_ci "$T/test_ellipsoid_packing"
 run dimer_ci dimer_ci "$T/clump/test_clump_regression" --gtest_filter=ClumpRegression.DimersOfAspectRatio1p5PackDenserThanSpheres
+run adhesive_ci adhesive_ci "$T/test_adhesive_packing" --gtest_filter=Packing.AdhesiveDepositionSweep
 run clump_resolution_ci clump_resolution_ci "$T/clump/test_clump_regression" --gtest_filter=ClumpRegression.CubeFirstResolutionStepLoosensThePour
 if [ "$CI_ONLY" = 0 ]; then
   run jamming_long jamming_long "$T/test_packing_long" --gtest_filter=PackingLong.JammedFrictionlessSpheres
@@ -72,6 +94,7 @@ if [ "$CI_ONLY" = 0 ]; then
   run beverloo_long beverloo_long "$T/test_packing_long" --gtest_filter=PackingLong.SiloDischargeFollowsBeverloo
   run dimer_sweep dimer_sweep "$T/clump/test_clump_regression_long" --gtest_filter=ClumpRegressionLong.DimerAspectRatioSweep
   run clump_resolution clump_resolution "$T/clump/test_clump_regression_long" --gtest_filter=ClumpRegressionLong.CubeResolutionSweep
+  run adhesive_long adhesive_long "$T/test_packing_long" --gtest_filter=PackingLong.AdhesiveDepositionSweep
   run ellipsoid_sweep ellipsoid_sweep env BUILD="$BUILD" REUSE="$REUSE" bash "$HERE/ellipsoid_packing_sweep.sh"
 fi
 

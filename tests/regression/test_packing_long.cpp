@@ -9,7 +9,11 @@
 // * silo discharge: 24,300 spheres in a silo 26 d wide filled about 40 d
 //   high (above 1.2 silo diameters, Janssen saturation; Mankoc et al. 2007),
 //   orifices of 5.5-10 d (the silo is 2.6 times the largest), 0.4 s each;
-// * jamming: 10,000 frictionless spheres in a periodic box, seeds 1-3.
+// * jamming: 10,000 frictionless spheres in a periodic box, seeds 1-3;
+// * adhesive deposition: 4,500 JKR micro-spheres in a 15 d x 15 d periodic
+//   box, Ad in {0.1, 0.3, 1, 3, 10, 30, 100}, seeds 1 and 2, and Ad = 1 at a
+//   quarter and four times the work of adhesion (softer and stiffer grains
+//   relative to their adhesion).
 #include "tests/regression/packing_support.hpp"
 
 namespace grains::test::packing {
@@ -185,6 +189,81 @@ TEST(PackingLong, JammedFrictionlessSpheres) {
                              .num("z_rigid_sd", stddev(zr)));
   expect_in_band(refphi, mean(phi), "phi, mean of 3 seeds");
   expect_in_band(refz, mean(zr), "Z without rattlers, mean of 3 seeds");
+}
+
+TEST(PackingLong, AdhesiveDepositionSweep) {
+  const Reference rlp = reference("adhesive_rlp_phi"), alp = reference("adhesive_alp_phi"),
+                  alpz = reference("adhesive_alp_z"), fall = reference("adhesive_phi_fall"),
+                  plateau = reference("adhesive_plateau");
+  const std::vector<double> ads = {0.1, 0.3, 1, 3, 10, 30, 100};
+  const std::vector<int> seeds = {1, 2};
+  std::vector<double> phi, z, phi_all, z_all, diffs;
+  for (double ad : ads) {
+    std::vector<double> p, q;
+    for (int seed : seeds) {
+      DepositConfig c;
+      c.count = 4500;
+      c.width = 0.00015;
+      c.seed = seed;
+      const DepositResult r = deposit_adhesive(ad, c);
+      EXPECT_GE(r.n, static_cast<std::size_t>(0.98 * c.count)) << "grains lost or not inserted at Ad = " << ad;
+      EXPECT_LT(std::abs(r.phi_change), 0.002) << "the deposit is still changing at Ad = " << ad;
+      EXPECT_LT(std::abs(r.z_change), 0.02) << "the deposit is still changing at Ad = " << ad;
+      p.push_back(r.phi);
+      q.push_back(r.z);
+    }
+    phi.push_back(mean(p));
+    z.push_back(mean(q));
+    phi_all.insert(phi_all.end(), p.begin(), p.end());
+    z_all.insert(z_all.end(), q.begin(), q.end());
+    diffs.push_back(p[0] - p[1]);
+  }
+  // Seed-to-seed spread: the standard deviation of one run from the
+  // differences of the two seeds, pooled over Ad.
+  double d2 = 0;
+  for (double d : diffs) d2 += d * d;
+  const double sigma = std::sqrt(d2 / (2.0 * static_cast<double>(diffs.size())));
+  // The same Ad reached with a quarter and four times the work of adhesion
+  // (U0 halved and doubled): how much the grains' softness relative to
+  // their adhesion (a0 / R* = 0.09 and 0.22 against 0.14) moves phi.
+  std::vector<double> ws = {0.0025, 0.01, 0.04}, phi_w;
+  for (double w : ws) {
+    DepositConfig c;
+    c.count = 4500;
+    c.width = 0.00015;
+    c.work_of_adhesion = w;
+    phi_w.push_back(w == 0.01 ? phi_all[4] : deposit_adhesive(1, c).phi);  // seed 1 at Ad = 1 is phi_all[4]
+  }
+  const auto at = [&](double ad) {
+    return static_cast<std::size_t>(std::find(ads.begin(), ads.end(), ad) - ads.begin());
+  };
+  const double ratio = (phi[at(30)] - phi[at(100)]) / (phi[at(1)] - phi[at(10)]);
+  record("adhesive_long", Record()
+                              .str("case", "adhesive deposition, 4,500 grains in 15 d x 15 d, seeds 1 and 2")
+                              .nums("ad", ads)
+                              .nums("phi", phi)
+                              .nums("z", z)
+                              .nums("phi_all", phi_all)
+                              .nums("z_all", z_all)
+                              .num("sigma_run", sigma)
+                              .nums("w", ws)
+                              .nums("phi_w", phi_w)
+                              .num("plateau_ratio", ratio));
+  std::cout << "seed-to-seed standard deviation of a run: " << sigma << " (CI assumes " << kDepositSigma << ")\n";
+  EXPECT_LE(sigma, 2 * kDepositSigma) << "the deposits scatter more than the CI test assumes";
+  expect_in_band(rlp, phi[at(0.1)], "Ad = 0.1, mean of 2 seeds");
+  for (double ad : {10.0, 30.0, 100.0}) {
+    expect_in_band(alp, phi[at(ad)], "Ad = " + std::to_string(ad));
+    expect_in_band(alpz, z[at(ad)], "Z at Ad = " + std::to_string(ad));
+  }
+  expect_in_band(fall, phi[at(0.1)] - phi[at(10)], "phi(0.1) - phi(10)");
+  // Up to the adhesion regime every step looser (means of two seeds: a
+  // difference has the standard deviation of one run).
+  for (std::size_t k = 0; k + 1 <= at(10); ++k)
+    EXPECT_GT(phi[k] - phi[k + 1], 2 * sigma) << "phi does not fall from Ad = " << ads[k] << " to " << ads[k + 1];
+  expect_in_band(plateau, ratio, "(phi(30) - phi(100)) / (phi(1) - phi(10))");
+  // Softness at fixed Ad moves phi far less than Ad does.
+  EXPECT_LT(std::abs(phi_w.front() - phi_w.back()), 0.25 * (phi[at(0.1)] - phi[at(10)]));
 }
 
 }  // namespace
