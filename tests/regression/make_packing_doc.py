@@ -119,8 +119,9 @@ def adhesive_section(results, refs):
         L.append("| Z | " + " | ".join(f"{z:.2f}" for z in lg["z"]) + " |")
         L.append("")
         L.append("The same Ad = 1 reached with w = " + ", ".join(f"{w:g}" for w in lg["w"]) +
-                 " J/m² (U0 halved and doubled; the grains softer or stiffer relative to their adhesion, "
-                 "a0/R* = 0.09, 0.14, 0.22): φ = " + ", ".join(f"{p:.4f}" for p in lg["phi_w"]) +
+                 " J/m² (U0 halved, as above, doubled; the contact radius at rest a0/R* = 0.09, 0.14, 0.22: "
+                 "the grains stiffer or softer relative to their adhesion): φ = " +
+                 ", ".join(f"{p:.4f}" for p in lg["phi_w"]) +
                  ". The residual dependence on the grains' stiffness is why the regression fixes w and E and "
                  "moves U0.\n")
     if ci:

@@ -224,8 +224,9 @@ TEST(PackingLong, AdhesiveDepositionSweep) {
   for (double d : diffs) d2 += d * d;
   const double sigma = std::sqrt(d2 / (2.0 * static_cast<double>(diffs.size())));
   // The same Ad reached with a quarter and four times the work of adhesion
-  // (U0 halved and doubled): how much the grains' softness relative to
-  // their adhesion (a0 / R* = 0.09 and 0.22 against 0.14) moves phi.
+  // (U0 halved and doubled): how much the grains' stiffness relative to
+  // their adhesion (contact radius at rest a0 / R* = 0.09 and 0.22 against
+  // 0.14) moves phi.
   std::vector<double> ws = {0.0025, 0.01, 0.04}, phi_w;
   for (double w : ws) {
     DepositConfig c;
