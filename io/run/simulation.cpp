@@ -342,6 +342,15 @@ std::string describe(const Simulation& s) {
   if (sc.neighbors.reach() > 0)  // a law whose contacts hold in tension (JKR)
     o << "contacts hold up to " << sc.neighbors.reach() << " m beyond touching (the pull-off separation of the "
       << "largest grains against a wall); the neighbour lists, wall near lists and ghosts reach that far\n";
+  {
+    const auto& m = sc.memory;
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "memory: about %.3g MiB for the %lld particles the case asks for (fields %.0f bytes each, exact; "
+                  "neighbour lists about %.0f bytes each in a dense bed, estimated)\n",
+                  m.total() / 1048576.0, static_cast<long long>(m.particles), m.field_bytes, m.list_bytes);
+    o << buf;
+  }
   o << "per-particle fields:";
   for (const auto& f : sc.particles.field_names()) o << " " << f;
   o << "\nstep pipeline:\n";

@@ -38,9 +38,21 @@ double rayleigh_time(const SceneConfig& c);
 /// scale is computed from (sim/laws/step_scale.hpp).
 GrainExtremes grain_extremes(const SceneConfig& c);
 
+/// The particle records a case asks for: the counts of its particle sets
+/// (clumps: their balls) and of every insertion it schedules (lattice sets
+/// that fill their region without a count are left out). With `capped_only`,
+/// only insertions capped by `times` count: an uncapped insertion places
+/// what fits, which may be far less than its schedule.
+std::int64_t planned_particles(const SceneConfig& c, bool capped_only = false);
+
+/// Memory this machine has available now (MemAvailable of /proc/meminfo), in
+/// bytes; 0 when unknown.
+double available_memory();
+
 /// Places the particles and sets the clock. Throws SetupError for problems
 /// a user can fix (with the case-file location), e.g. an over-full region,
-/// overlapping initial positions, a time step above the Rayleigh time.
+/// overlapping initial positions, a time step above the Rayleigh time, a
+/// case whose grains' fields alone need more memory than the machine has.
 /// Warnings (e.g. dt above 0.3 Rayleigh times) are appended to c.warnings.
 Scene build_scene(SceneConfig& c);
 

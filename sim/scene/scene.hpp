@@ -93,6 +93,13 @@ struct Scene {
   /// Each wall's load this step, from this rank's particles; empty unless
   /// measured (output.wall_loads), so that no wall stage computes it otherwise.
   std::vector<WallLoad> wall_loads;
+  /// The memory the case's grains will need, estimated at set-up (build_scene.hpp).
+  struct Memory {
+    std::int64_t particles = 0;  // particle records the case asks for (sets and insertions)
+    double field_bytes = 0;      // per particle: every allocated field, wall history included (exact)
+    double list_bytes = 0;       // per particle: neighbour-list rows of a dense bed (estimate)
+    double total() const { return static_cast<double>(particles) * (field_bytes + list_bytes); }
+  } memory;
 };
 
 }  // namespace grains::sim
