@@ -155,6 +155,14 @@ inline LineFit fit_line(const std::vector<double>& x, const std::vector<double>&
   return f;
 }
 
+/// A number as a case-file override value (12 significant digits).
+inline std::string num(double v) {
+  std::ostringstream o;
+  o.precision(12);
+  o << v;
+  return o.str();
+}
+
 inline void run_steps(io::Simulation& s, std::int64_t until_step) {
   while (s.scene.clock.step < until_step) s.pipeline.step(s.scene);
 }
@@ -289,12 +297,6 @@ struct Silo {
 inline Silo fill_silo(const SiloConfig& c) {
   const std::string path = std::string(GRAINS_SOURCE_DIR) + "/cases/silo_discharge/case.yaml";
   const double R = c.silo_d / 2, half = R / std::sqrt(2.0) - 0.00065;
-  auto num = [](double v) {
-    std::ostringstream o;
-    o.precision(12);
-    o << v;
-    return o.str();
-  };
   Silo out{io::make_simulation(io::load_case(
       path, {"particles.0.count=" + std::to_string(c.count), "particles.0.placement.seed=" + std::to_string(c.seed),
              "materials.0.friction=" + num(c.friction), "walls.0.hole_radius=0", "walls.1.radius=" + num(R),
@@ -447,12 +449,6 @@ inline DepositResult deposit_adhesive(double ad, const DepositConfig& c) {
   const std::string path = std::string(GRAINS_SOURCE_DIR) + "/cases/adhesive_deposition/case.yaml";
   const double rho = 2500, R = 5e-6;
   const double u0 = std::sqrt(c.work_of_adhesion / (2 * rho * R * ad));
-  auto num = [](double v) {
-    std::ostringstream o;
-    o.precision(12);
-    o << v;
-    return o.str();
-  };
   // As the case says: 2 grains per 2 um of fall, a fall of 55-59 d, and
   // time for the last grains to land and come to rest.
   const double every = 2e-6 / u0, end = every * (c.count / 2) + 6.5e-4 / u0;
@@ -613,12 +609,6 @@ inline JamResult measure_jammed(const sim::Scene& sc, double box) {
 inline JamResult jam(const JamConfig& c) {
   const std::string path = std::string(GRAINS_SOURCE_DIR) + "/cases/jam_frictionless/case.yaml";
   const double r0 = 0.00045;
-  auto num = [](double v) {
-    std::ostringstream o;
-    o.precision(12);
-    o << v;
-    return o.str();
-  };
   const std::string lo = num(r0), hi = num(c.box - r0);
   auto s = io::make_simulation(io::load_case(
       path, {"particles.0.count=" + std::to_string(c.count), "particles.0.placement.seed=" + std::to_string(c.seed),

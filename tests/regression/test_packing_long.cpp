@@ -197,14 +197,23 @@ TEST(PackingLong, AdhesiveDepositionSweep) {
                   plateau = reference("adhesive_plateau");
   const std::vector<double> ads = {0.1, 0.3, 1, 3, 10, 30, 100};
   const std::vector<int> seeds = {1, 2};
+  const auto at = [&](double ad) {
+    return static_cast<std::size_t>(std::find(ads.begin(), ads.end(), ad) - ads.begin());
+  };
+  const auto config = [](int seed, double w) {
+    DepositConfig c;
+    c.count = 4500;
+    c.width = 0.00015;
+    c.seed = seed;
+    c.work_of_adhesion = w;
+    return c;
+  };
+  const double w0 = DepositConfig{}.work_of_adhesion;
   std::vector<double> phi, z, phi_all, z_all, diffs;
   for (double ad : ads) {
     std::vector<double> p, q;
     for (int seed : seeds) {
-      DepositConfig c;
-      c.count = 4500;
-      c.width = 0.00015;
-      c.seed = seed;
+      const DepositConfig c = config(seed, w0);
       const DepositResult r = deposit_adhesive(ad, c);
       EXPECT_GE(r.n, static_cast<std::size_t>(0.98 * c.count)) << "grains lost or not inserted at Ad = " << ad;
       EXPECT_LT(std::abs(r.phi_change), 0.002) << "the deposit is still changing at Ad = " << ad;
@@ -227,17 +236,10 @@ TEST(PackingLong, AdhesiveDepositionSweep) {
   // (U0 halved and doubled): how much the grains' stiffness relative to
   // their adhesion (contact radius at rest a0 / R* = 0.09 and 0.22 against
   // 0.14) moves phi.
-  std::vector<double> ws = {0.0025, 0.01, 0.04}, phi_w;
-  for (double w : ws) {
-    DepositConfig c;
-    c.count = 4500;
-    c.width = 0.00015;
-    c.work_of_adhesion = w;
-    phi_w.push_back(w == 0.01 ? phi_all[4] : deposit_adhesive(1, c).phi);  // seed 1 at Ad = 1 is phi_all[4]
-  }
-  const auto at = [&](double ad) {
-    return static_cast<std::size_t>(std::find(ads.begin(), ads.end(), ad) - ads.begin());
-  };
+  const std::vector<double> ws = {w0 / 4, w0, 4 * w0};
+  std::vector<double> phi_w;
+  for (double w : ws)  // w0 at seed 1 was run in the sweep
+    phi_w.push_back(w == w0 ? phi_all[at(1) * seeds.size()] : deposit_adhesive(1, config(1, w)).phi);
   const double ratio = (phi[at(30)] - phi[at(100)]) / (phi[at(1)] - phi[at(10)]);
   record("adhesive_long", Record()
                               .str("case", "adhesive deposition, 4,500 grains in 15 d x 15 d, seeds 1 and 2")
