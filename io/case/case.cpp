@@ -622,6 +622,9 @@ class CaseParser {
       c.until = v_.number(e, d, "until", ctx, 0);
       if (e["until"] && c.until < c.at) v_.error(e["until"], ctx, "until must not be before at");
       c.times = v_.integer(e, d, "times", ctx, 0);
+      if (e["times"] && !e["every"])
+        v_.error(e["times"], ctx, "'times' caps repeated insertions and applies with every only (without every the "
+                                  "grains are inserted once)");
       c.orientations = static_cast<int>(v_.integer(e, d, "orientations", ctx, 8));
       c.spacing = v_.number(e, d, "spacing", ctx, 0);
       c.margin = v_.number(e, d, "margin", ctx, 0.25);

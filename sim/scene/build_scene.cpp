@@ -298,8 +298,8 @@ Scene build_scene(SceneConfig& c) {
         if (in.grains.count > most) most = in.grains.count, where = in.where;
       std::ostringstream e;
       e.precision(3);
-      e << (where.empty() ? "" : where + ": ") << "the case asks for " << certain << " particles: their fields alone need " << fields / 1073741824.0
-        << " GiB" << (ranks > 1 ? " per rank" : "") << " (" << s.memory.field_bytes
+      e << (where.empty() ? "" : where + ": ") << "the case asks for " << certain
+        << " particles: their fields alone need " << fields / 1073741824.0 << " GiB" << (ranks > 1 ? " per rank" : "") << " (" << s.memory.field_bytes
         << " bytes each), and the neighbour lists about " << s.memory.list_bytes << " bytes each more, but this "
         << "machine has " << avail / 1073741824.0 << " GiB available; lower the counts (particles[].count, "
         << "insert[].count or times) or run on more machines";

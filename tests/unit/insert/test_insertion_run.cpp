@@ -218,6 +218,10 @@ TEST(InsertionRun, CaseErrorsSayWhatAndWhere) {
   m = errors_of(with(good, "time: {dt: 4.0e-6, end: 0.008}", "time: {dt: 4.0e-6, end: 0.008, integrator: arkode}"));
   EXPECT_NE(m.find("case.yaml:21:5: insert 'fines': grains cannot be inserted with time.integrator: arkode"),
             std::string::npos) << m;
+  m = errors_of(with(good, "method: fft", "method: fft\n    times: 3"));
+  EXPECT_NE(m.find("case.yaml:28:12: insert[0]: 'times' caps repeated insertions and applies with every only "
+                   "(without every the grains are inserted once)"),
+            std::string::npos) << m;
   m = errors_of(with(bed_case(""), "insert:\n", "insert: []\n"));
   EXPECT_NE(m.find("insert: expected a non-empty list of insertions"), std::string::npos) << m;
 }
