@@ -7,7 +7,8 @@
 // lasts t_c whatever its mass, or from a characteristic impact velocity V as
 // LIGGGHTS does, k_n = 16/15 sqrt(R*) E* (15 m* V^2 / (16 sqrt(R*) E*))^(1/5)
 // (the stiffness whose peak overlap at V equals Hertz's). The damping is
-// given (damping, with stiffness only) or derived from the pair's
+// given (damping, or damping_rate x m* as LAMMPS's gran/hooke gamma_n, with
+// stiffness only) or derived from the pair's
 // restitution, gamma_n = 2 sqrt(m* k_n) (-ln e) / sqrt(pi^2 + ln^2 e), so
 // that the oscillator's restitution is e exactly and a contact lasts
 //   t_c = pi / sqrt(k_n/m* - (gamma_n / 2 m*)^2).
@@ -45,9 +46,9 @@ struct LinearNormal {
   static constexpr const char* name = "linear";
   static constexpr const char* tangential_name = "linear";
   // Keys, in LawValues order.
-  enum Key { kStiffness, kDamping, kContactTime, kVelocity, kKappa, kX, kLimit };
+  enum Key { kStiffness, kDamping, kContactTime, kVelocity, kKappa, kX, kLimit, kRate };
   // The prepared per-pair constants in PairParams::normal.
-  enum Slot { sMode, sK, sA, sB, sGamma, sG1, sKappa, sX, sLimit };
+  enum Slot { sMode, sK, sA, sB, sGamma, sG1, sKappa, sX, sLimit, sRate };
   static constexpr double Stiffness = 0, ContactTime = 1, Velocity = 2;  // sMode
 
   static std::string summary() {
@@ -80,7 +81,12 @@ struct LinearNormal {
                 .in(0, inf),
             key("limit_force", K::Bool,
                 "clamp the normal force at zero (no pull while unloading; restitution then above the target)")
-                .def_bool(false)};
+                .def_bool(false),
+            key("damping_rate", K::Number,
+                "normal dashpot per unit effective mass, gamma_n = m* x damping_rate (with stiffness only; "
+                "LAMMPS's gran/hooke gamma_n)")
+                .si("1/s")
+                .in(0, inf)};
   }
 
   /// One set of valid values per way of giving the law (defaults filled in).
@@ -92,7 +98,8 @@ struct LinearNormal {
       return v;
     };
     return {with({{kStiffness, 1e5}}), with({{kStiffness, 1e5}, {kDamping, 2.0}}), with({{kContactTime, 2e-4}}),
-            with({{kVelocity, 1.0}}), with({{kStiffness, 1e5}, {kLimit, 1}, {kKappa, 1.0}, {kX, 1.0}})};
+            with({{kVelocity, 1.0}}), with({{kStiffness, 1e5}, {kLimit, 1}, {kKappa, 1.0}, {kX, 1.0}}),
+            with({{kStiffness, 1e5}, {kRate, 50.0}})};
   }
 
   /// "" when the values (defaults filled in) define the law, else what is wrong.
@@ -104,6 +111,10 @@ struct LinearNormal {
     if (v.given(kDamping) && !v.given(kStiffness))
       return "damping goes with stiffness; with contact_time or characteristic_velocity it follows from the "
              "restitution";
+    if (v.given(kRate) && !v.given(kStiffness))
+      return "damping_rate goes with stiffness; with contact_time or characteristic_velocity the damping "
+             "follows from the restitution";
+    if (v.given(kRate) && v.given(kDamping)) return "give damping or damping_rate, not both";
     return {};
   }
 
@@ -121,6 +132,7 @@ struct LinearNormal {
     c[sKappa] = v[kKappa];
     c[sX] = v[kX];
     c[sLimit] = v[kLimit] != 0 ? 1 : 0;
+    c[sRate] = v.given(kRate) ? v[kRate] : -1;
     return {};
   }
 
@@ -135,7 +147,7 @@ struct LinearNormal {
       const double sR = std::sqrt(R);
       kn = c[sA] * sR * std::pow(c[sB] * m / sR, 0.2);
     }
-    gn = c[sGamma] >= 0 ? c[sGamma] : c[sG1] * std::sqrt(m * kn);
+    gn = c[sGamma] >= 0 ? c[sGamma] : c[sRate] >= 0 ? c[sRate] * m : c[sG1] * std::sqrt(m * kn);
   }
 
   static GRAINS_INLINE LinearState evaluate(double d, double d_dot, double R, double m, const PairParams& p) {

@@ -54,6 +54,22 @@ TEST(LinearLaw, GivenStiffnessAndDamping) {
   }
 }
 
+TEST(LinearLaw, GivenStiffnessAndDampingRate) {
+  // LAMMPS's gran/hooke: gamma_n = m* x rate, so e = exp(-rate t_c / 2) with
+  // t_c = pi / sqrt(k/m* - rate^2/4): the same e on a wall (m* = m) and
+  // between two spheres (m* = m/2) only when k/m* is large.
+  const double k = 2e4, rate = 4000;
+  for (const bool wall : {false, true}) {
+    const double ms = wall ? mass : mass / 2;
+    const double tc = M_PI / std::sqrt(k / ms - 0.25 * rate * rate);
+    const double e = std::exp(-0.5 * rate * tc);
+    const auto r = impact(wall, E, nu, rho, R, 0.5, 0.9, kSteps, linear("{stiffness: 2e4, damping_rate: 4000}"), tc);
+    SCOPED_TRACE(wall ? "sphere-wall" : "sphere-sphere");
+    EXPECT_NEAR(r.restitution / e, 1.0, 0.005);
+    EXPECT_NEAR(r.contact_time / tc, 1.0, 0.005);
+  }
+}
+
 TEST(LinearLaw, GivenContactTime) {
   // k_n and gamma_n per contact from t_c and e: sphere-sphere and sphere-wall
   // (m* twice as large) last the same time.

@@ -73,6 +73,25 @@ TEST(NormalLawKeys, LinearNeedsExactlyOneWayToGiveTheStiffness) {
   EXPECT_NE(m.find("(2 given)"), std::string::npos) << m;
   m = errors_of(kCase + "contact: {model: linear, linear: {contact_time: 1.0e-4, damping: 1}}\n");
   EXPECT_NE(m.find("damping goes with stiffness"), std::string::npos) << m;
+  m = errors_of(kCase + "contact: {model: linear, linear: {contact_time: 1.0e-4, damping_rate: 50}}\n");
+  EXPECT_NE(m.find("damping_rate goes with stiffness"), std::string::npos) << m;
+  m = errors_of(kCase + "contact: {model: linear, linear: {stiffness: 1.0e3, damping: 1, damping_rate: 50}}\n");
+  EXPECT_NE(m.find("give damping or damping_rate, not both"), std::string::npos) << m;
+  EXPECT_NE(m.find("case.yaml:11:"), std::string::npos) << m;
+  m = errors_of(kCase + "contact: {model: linear, linear: {stiffness: 1.0e3, damping_rate: -1}}\n");
+  EXPECT_NE(m.find("damping_rate"), std::string::npos) << m;
+}
+
+TEST(NormalLawKeys, LinearDampingRateReachesThePairTable) {
+  auto s = make_simulation(parse_case(kCase + "contact: {model: linear, linear: {stiffness: 3.0e3, damping_rate: 50}}\n",
+                                      "case.yaml"));
+  const auto& glass = s.scene.pairs(0, 0);
+  EXPECT_EQ(glass.normal[L::sRate], 50.0);
+  EXPECT_LT(glass.normal[L::sGamma], 0);  // not an absolute damping
+  double kn = 0, gn = 0;
+  L::coefficients(0.001, 2e-4, glass, kn, gn);
+  EXPECT_EQ(kn, 3e3);
+  EXPECT_EQ(gn, 50.0 * 2e-4);  // gamma_n = rate x m*
 }
 
 TEST(NormalLawKeys, BadValuesAndUnknownKeysAreLocated) {

@@ -147,8 +147,8 @@ TEST(LawProperties, EveryCompositionObeysNewtonZeroBeyondContactAndExchangeSymme
     check_wall_law<Law>(normal);
     ++count;
   });
-  // 4 normal laws (hertz 1, linear 5, dmt 1, jkr 1 examples) x 2 x 2 x 2.
-  EXPECT_EQ(count, 8 * 8);
+  // 4 normal laws (hertz 1, linear 6, dmt 1, jkr 1 examples) x 2 x 2 x 2.
+  EXPECT_EQ(count, 9 * 8);
 }
 
 TEST(LawProperties, CoulombLimitHoldsForEveryNormalLaw) {
