@@ -584,7 +584,10 @@ class CaseParser {
       parse_radius(s, p, ctx);
       p.count = v_.integer(s, d, "count", ctx, 0);
       p.velocity = v_.vec3(s, d, "velocity", ctx);
+      p.frozen = v_.boolean(s, d, "frozen", ctx, false);
       if (s["shape"]) parse_shape(s["shape"], p, ctx + ".shape");
+      if (p.frozen && p.shape.kind == sim::ShapeConfig::Kind::Clump)
+        v_.error(s["frozen"], ctx + ".frozen", "frozen clumps are not supported (frozen sets are spheres or ellipsoids)");
       if (s["placement"]) parse_placement(s["placement"], p, ctx);
       if (p.placement.kind == sim::Placement::Kind::RandomFill && s["placement"] && !s["count"])
         v_.error(s, ctx, "random_fill needs 'count' (the number of particles to place)");

@@ -150,6 +150,13 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
     collect(std::false_type{}, std::true_type{});
   else
     collect(std::false_type{}, std::false_type{});
+  if (frozen_) {  // two frozen grains never interact
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < pi.size(); ++k)
+      if (p.inv_mass[pi[k]] != 0 || p.inv_mass[pj[k]] != 0) pi[kept] = pi[k], pj[kept] = pj[k], ++kept;
+    pi.resize(kept);
+    pj.resize(kept);
+  }
   // Counting sort of the pairs into rows.
   row_start.assign(n + 1, 0);
   for (auto i : pi) ++row_start[i + 1];
@@ -173,6 +180,7 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   wall_items.assign(walls.count(), {});
   walls.for_each([&](const auto& wall, std::size_t w) {
     wall.near_list(p, n_own, skin_ + reach_, shapes, wall_near[w], wall_items[w]);
+    if (frozen_) drop_frozen(p, wall_near[w], wall_items[w]);
   });
 
   x_build_.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(n_own));
@@ -183,9 +191,37 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   stats_.pairs = partner.size();
 }
 
+void NeighborList::drop_frozen(const ParticleStore& p, std::vector<std::uint32_t>& near, NearItems& items) {
+  const bool with_items = items.start.size() == near.size() + 1 && near.size() > 0;
+  std::size_t kept = 0, item = 0;
+  for (std::size_t m = 0; m < near.size(); ++m) {
+    if (p.inv_mass[near[m]] == 0) continue;
+    if (with_items) {
+      for (auto k = items.start[m]; k < items.start[m + 1]; ++k) items.items[item++] = items.items[k];
+      items.start[kept + 1] = static_cast<std::uint32_t>(item);
+    }
+    near[kept++] = near[m];
+  }
+  near.resize(kept);
+  if (with_items) items.start.resize(kept + 1), items.items.resize(item);
+}
+
 void NeighborList::compute_pair_constants(const ParticleStore& p) {
   const std::size_t rows = row_start.empty() ? 0 : row_start.size() - 1;
   pair_constants.resize(partner.size());
+  if (frozen_) {  // a frozen grain is as heavy as a wall: m* is the other's mass
+    for (std::size_t i = 0; i < rows; ++i)
+      for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
+        const auto j = partner[k];
+        const double rs = p.radius[i] + p.radius[j];
+        const double rc = rs + reach_;
+        const double m = p.inv_mass[i] == 0   ? p.mass[j]
+                         : p.inv_mass[j] == 0 ? p.mass[i]
+                                              : p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+        pair_constants[k] = {rc * rc, p.radius[i] * p.radius[j] / rs, m, true};
+      }
+    return;
+  }
   for (std::size_t i = 0; i < rows; ++i)
     for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
       const auto j = partner[k];

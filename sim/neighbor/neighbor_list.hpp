@@ -36,6 +36,11 @@ class NeighborList {
   /// separation. The lists, the wall near lists and the force loop's first
   /// rejection reach this much further than the skin; 0 for every other law.
   void set_reach(double reach) { reach_ = reach; }
+  /// Scenes with frozen grains (inv_mass 0): pairs of two frozen grains are
+  /// left out, a contact with one has m* = the other's mass, and frozen
+  /// grains are left out of the walls' near lists. Off: none of this runs.
+  void set_frozen(bool on) { frozen_ = on; }
+  bool frozen() const { return frozen_; }
   double reach() const { return reach_; }
   int history_size() const { return history_size_; }
 
@@ -139,7 +144,9 @@ class NeighborList {
   double skin_ = 0;
   double reach_ = 0;
   double build_time_ = 0;
+  static void drop_frozen(const ParticleStore& p, std::vector<std::uint32_t>& near, NearItems& items);
   bool with_gather_ = false;
+  bool frozen_ = false;
   double growth_ = 0;  // largest radius growth since the build
   std::vector<Vec3> x_build_;
   // Global ids of all particles (owned and ghosts) at the last build: the

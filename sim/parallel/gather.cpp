@@ -52,6 +52,7 @@ Scene gather_scene(Scene& s) {
   g.particles.configure(p.fields(), p.wall_history_size(), p.wall_tag_size());
   g.neighbors.configure(H, s.neighbors.skin());
   g.neighbors.set_reach(s.neighbors.reach());
+  g.neighbors.set_frozen(s.neighbors.frozen());
   if (!comm.root()) return g;
 
   ParticleStore all;

@@ -175,6 +175,7 @@ Pipeline assemble_pipeline(const Scene& s, const SceneConfig& c) {
   }
   p.add(std::make_unique<NeighborStage>(c.sort_particles));
   add_contact_law(p, n, c.normal.name);
+  if (c.has_frozen() && (n.rotation || n.ellipsoids)) p.add(std::make_unique<FrozenHold>());
   if (n.clumps) p.add(std::make_unique<ClumpForces>());  // last of the force phase
   // First of the output phase (outputs are added after it), only when asked for.
   if (!c.insertions.empty()) p.add(std::make_unique<InsertionStage>(c.insertions, s.clock.dt, n.ellipsoids));

@@ -36,4 +36,20 @@ class ClearForces final : public Stage {
   }
 };
 
+/// Frozen grains (inv_mass 0: particles[].frozen) take no spin: their torque
+/// is cleared after every force (their velocity already stays, F/m being 0
+/// for them). Only in scenes with frozen grains that rotate; the force on
+/// them is kept (it is what they bear: output's force field).
+class FrozenHold final : public Stage {
+ public:
+  std::string name() const override { return "force.frozen(no torque)"; }
+  Phase phase() const override { return Phase::Force; }
+  void run(Scene& s) override {
+    auto& p = s.particles;
+    const std::size_t n = p.n_owned();
+    for (std::size_t i = 0; i < n; ++i)
+      if (p.inv_mass[i] == 0) p.torque[i].setZero();
+  }
+};
+
 }  // namespace grains::sim

@@ -71,6 +71,7 @@ void add_grain(Scene& s, const ParticleSetConfig& set, const Vec3& x, double r, 
     throw SetupError(e.str());
   }
   const auto i = p.add(gid++, x, set.velocity, r, m, set.material, ell ? kEllipsoid : kSphere);
+  if (set.frozen) p.inv_mass[i] = 0;  // held: what marks a frozen grain everywhere (checkpoints, ranks, ghosts)
   if (ellipsoid_fields) {
     p.semi_axes[i] = axes;
     const Vec3 a2 = axes.cwiseProduct(axes);
@@ -382,6 +383,7 @@ void setup_parallel(Scene& s, const SceneConfig& c, double rmax) {
   const Comm& comm = Comm::world();
   s.deterministic = c.parallel.deterministic.value_or(comm.parallel()) || omp_get_max_threads() > 1;
   s.neighbors.set_gather(s.deterministic);
+  s.neighbors.set_frozen(c.has_frozen());
   if (!comm.parallel() && !s.domain.any_periodic()) return;
   // Ghost cut-off: the largest pair cut-off, plus how far a clump's ball may
   // lie from the centre of mass that decides its rank.

@@ -237,6 +237,7 @@ void check_overlaps(const SceneConfig& c, const std::vector<PlacedParticle>& p) 
   for (std::size_t i = 0; i < p.size(); ++i) {
     std::size_t other = 0;
     const bool bad = grid.any_near(p[i].x, [&](std::size_t j) {
+      if (c.sets[p[i].set].frozen && c.sets[p[j].set].frozen) return false;  // frozen grains never meet
       const double d = grid.delta(p[i].x, p[j].x).norm();
       const double ov = p[i].r + p[j].r - d;
       if (ov > c.overlap_tolerance * std::min(p[i].r, p[j].r)) {
@@ -259,7 +260,11 @@ void check_overlaps(const SceneConfig& c, const std::vector<PlacedParticle>& p) 
                        " of set '" + c.sets[b.set].name + "' and particle " + std::to_string(a.index_in_set) +
                        " of set '" + c.sets[a.set].name + "' overlap by " + fmt(ov) + " m (" +
                        fmt(100 * ov / std::min(a.r, b.r)) + "% of the smaller radius; at most " +
-                       fmt(100 * c.overlap_tolerance) + "% is accepted)" +
+                       fmt(100 * c.overlap_tolerance) + "% is accepted" +
+                       (c.sets[a.set].frozen != c.sets[b.set].frozen
+                            ? "; frozen grains may overlap each other, not the grains that move"
+                            : "") +
+                       ")" +
                        (where(a) != where(b) ? " (other particle at " + where(a) + ")" : ""));
     }
     grid.insert(p[i].x, p[i].r, i);

@@ -81,6 +81,10 @@ struct ParticleSetConfig {
   std::int64_t count = 0;  // 0 with Lattice: fill the region
   Placement placement;
   Vec3 velocity{0, 0, 0};
+  /// Held: never integrated, the grains keep `velocity` (zero: fixed in
+  /// place; else they move rigidly at it) and exert forces as walls do
+  /// (m* of a contact with one is the other grain's mass).
+  bool frozen = false;
   std::string where;
 };
 
@@ -164,6 +168,11 @@ struct SceneConfig {
 
   /// The fastest speed grains are given at insertion (0 without insertions):
   /// part of the scene's speed scale (blow-up check, ARKODE's scales).
+  bool has_frozen() const {
+    for (const auto& set : sets)
+      if (set.frozen) return true;
+    return false;
+  }
   double fastest_insertion() const {
     double v = 0;
     for (const auto& in : insertions) v = std::max(v, in.grains.velocity.norm());

@@ -75,7 +75,12 @@ std::vector<EffectDoc> scene_docs() {
                 key("count", K::Integer, "number of particles (lattice: optional, fills the region)").in(1, 1e12),
                 key("placement", K::Map, "where the particles start (see placement.*)").req(),
                 key("shape", K::Map, "particle shape (see particles.shape); default a sphere"),
-                key("velocity", K::Vec3, "initial velocity").def("[0, 0, 0]").si("m/s")}});
+                key("velocity", K::Vec3, "initial velocity").def("[0, 0, 0]").si("m/s"),
+                key("frozen", K::Bool,
+                    "held grains (a rough base, a moving paddle of grains): never integrated, they keep `velocity` "
+                    "(zero: fixed) and no spin, and push on the others as a wall does; pairs of frozen grains are "
+                    "skipped and may overlap. Spheres and ellipsoids")
+                    .def_bool(false)}});
   d.push_back({"particles.shape", "shape: {type: ellipsoid | clump, ...}",
                "The shape of a particle set. Ellipsoids use the Perram-Wertheim contact function and a "
                "quaternion rigid-body integrator; their axes scale with each particle's radius. Clumps are "
