@@ -16,6 +16,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLPolyDataWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
@@ -246,6 +247,12 @@ std::string VtkOutput::write_particles(const sim::Scene& s, const fs::path& file
   pd->AddArray(vec_array("velocity", p.v, n));
   pd->AddArray(vec_array("force", p.f, n));
   if (p.fields().has(sim::Field::AngularVelocity)) pd->AddArray(vec_array("angular_velocity", p.omega, n));
+  if (s.neighbors.frozen()) {  // scenes with frozen sets: 1 for a held grain (particles[].frozen)
+    vtkNew<vtkUnsignedCharArray> frozen;
+    frozen->SetName("frozen");
+    for (std::size_t i = 0; i < n; ++i) frozen->InsertNextValue(p.inv_mass[i] == 0 ? 1 : 0);
+    pd->AddArray(frozen);
+  }
   if (p.fields().has(sim::Field::Orientation) && p.fields().has(sim::Field::SemiAxes)) {
     // Orientation as a quaternion (w, x, y, z), the semi-axes, and the shape
     // tensor R diag(a, b, c) R^T that ParaView's Tensor Glyph draws as the ellipsoid.

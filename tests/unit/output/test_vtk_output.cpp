@@ -71,6 +71,43 @@ output: {every_steps: 40, progress: false}
   w->SetFileName((dir / "frames/walls_000000.vtp").c_str());
   w->Update();
   EXPECT_EQ(w->GetOutput()->GetNumberOfCells(), 1 + 64);  // a plane quad and 64 cylinder facets
+  EXPECT_EQ(grid->GetPointData()->GetArray("frozen"), nullptr) << "only scenes with frozen grains have it";
+  fs::remove_all(dir);
+}
+
+TEST(VtkOutput, FrozenGrainsAreMarked) {
+  const std::string yaml = R"(
+domain: {min: [0, 0, -0.001], max: [0.01, 0.01, 0.02]}
+gravity: [0, 0, -9.81]
+materials:
+  - {name: m, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3, friction: 0.3}
+particles:
+  - {name: base, material: m, radius: 0.0005, frozen: true, placement: {type: lattice, region: {min: [0, 0, -0.0005], max: [0.01, 0.01, 0.0005]}}}
+  - {name: bed, material: m, radius: 0.0005, count: 30, placement: {type: random_fill, region: {min: [0, 0, 0.001], max: [0.01, 0.01, 0.02]}}}
+time: {dt_rayleigh: 0.2, end: 0.002}
+output: {every_steps: 1000000, progress: false}
+)";
+  auto s = from_yaml(yaml);
+  const fs::path dir = fs::temp_directory_path() / "grains_test_vtk_frozen";
+  fs::remove_all(dir);
+  io::RunOptions opt;
+  opt.out_dir = dir;
+  opt.quiet = true;
+  (void)io::run(s, opt);
+  vtkNew<vtkXMLUnstructuredGridReader> r;
+  r->SetFileName((dir / "frames/particles_000000.vtu").c_str());
+  r->Update();
+  auto* pd = r->GetOutput()->GetPointData();
+  auto* frozen = pd->GetArray("frozen");
+  ASSERT_NE(frozen, nullptr);
+  int held = 0;
+  const vtkIdType n = r->GetOutput()->GetNumberOfPoints();
+  for (vtkIdType k = 0; k < n; ++k) {
+    const bool base = r->GetOutput()->GetPoint(k)[2] == 0.0;  // the lattice's plane; the bed starts above 0.0015
+    EXPECT_EQ(frozen->GetTuple1(k), base ? 1.0 : 0.0) << "point " << k;
+    held += base;
+  }
+  EXPECT_EQ(held, n - 30);
   fs::remove_all(dir);
 }
 
