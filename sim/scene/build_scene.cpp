@@ -361,6 +361,7 @@ Scene build_scene(SceneConfig& c) {
   check_insertions(c);
   // Ellipsoid scenes keep the PW85 lambda of each pair after the law's history.
   s.neighbors.configure(need.history_size + (need.ellipsoids ? 1 : 0), c.skin * 2 * rmax);
+  s.neighbors.set_frozen(c.has_frozen());
   // Contacts that hold beyond touching (JKR): the lists reach the largest
   // pull-off separation (R* is at most the largest radius, against a wall).
   const double grow = c.growth.enabled ? c.growth.max_scale : 1.0;
@@ -383,7 +384,6 @@ void setup_parallel(Scene& s, const SceneConfig& c, double rmax) {
   const Comm& comm = Comm::world();
   s.deterministic = c.parallel.deterministic.value_or(comm.parallel()) || omp_get_max_threads() > 1;
   s.neighbors.set_gather(s.deterministic);
-  s.neighbors.set_frozen(c.has_frozen());
   if (!comm.parallel() && !s.domain.any_periodic()) return;
   // Ghost cut-off: the largest pair cut-off, plus how far a clump's ball may
   // lie from the centre of mass that decides its rank.

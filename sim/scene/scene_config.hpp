@@ -166,13 +166,14 @@ struct SceneConfig {
   std::vector<InsertionConfig> insertions;  // insert[]: grains added during the run
   std::vector<std::string> warnings;  // filled by build_scene
 
-  /// The fastest speed grains are given at insertion (0 without insertions):
-  /// part of the scene's speed scale (blow-up check, ARKODE's scales).
+  /// Some particle set is frozen (particles[].frozen).
   bool has_frozen() const {
     for (const auto& set : sets)
       if (set.frozen) return true;
     return false;
   }
+  /// The fastest speed grains are given at insertion (0 without insertions):
+  /// part of the scene's speed scale (blow-up check, ARKODE's scales).
   double fastest_insertion() const {
     double v = 0;
     for (const auto& in : insertions) v = std::max(v, in.grains.velocity.norm());
