@@ -1,6 +1,7 @@
 #pragma once
 // Helpers for tests that run real scenes from case text.
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <string>
 
@@ -11,6 +12,15 @@ namespace grains::test {
 
 inline io::Simulation from_yaml(const std::string& yaml, const std::vector<std::string>& sets = {}) {
   return io::make_simulation(io::parse_case(yaml, "test.yaml", sets));
+}
+
+/// Runs s quietly (no progress line) into `dir`, emptied first; the run's summary.
+inline io::RunSummary run_into(io::Simulation& s, const std::filesystem::path& dir) {
+  std::filesystem::remove_all(dir);
+  io::RunOptions opt;
+  opt.out_dir = dir;
+  opt.quiet = true;
+  return io::run(s, opt);
 }
 
 /// A material block in YAML.

@@ -32,11 +32,7 @@ output: {vtk: false, progress: false, solid_fraction: {spacing: 0.0004, toleranc
 )";
   auto s = from_yaml(yaml);
   const fs::path dir = fs::temp_directory_path() / "grains_test_solid_fraction";
-  fs::remove_all(dir);
-  io::RunOptions opt;
-  opt.out_dir = dir;
-  opt.quiet = true;
-  io::run(s, opt);
+  run_into(s, dir);
   ASSERT_TRUE(fs::exists(dir / "solid_fraction.pvd"));
   ASSERT_TRUE(fs::exists(dir / "frames/solid_fraction_000001.vti"));  // first and last
   vtkNew<vtkXMLImageDataReader> r;

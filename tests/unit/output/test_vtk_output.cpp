@@ -37,11 +37,7 @@ output: {every_steps: 40, progress: false}
 )";
   auto s = from_yaml(yaml);
   const fs::path dir = fs::temp_directory_path() / "grains_test_vtk";
-  fs::remove_all(dir);
-  io::RunOptions opt;
-  opt.out_dir = dir;
-  opt.quiet = true;
-  const auto sum = io::run(s, opt);
+  const auto sum = run_into(s, dir);
   ASSERT_TRUE(fs::exists(dir / "particles.pvd"));
   ASSERT_TRUE(fs::exists(dir / "walls.pvd"));
   ASSERT_TRUE(fs::exists(dir / "summary.json"));
@@ -89,11 +85,7 @@ output: {every_steps: 1000000, progress: false}
 )";
   auto s = from_yaml(yaml);
   const fs::path dir = fs::temp_directory_path() / "grains_test_vtk_frozen";
-  fs::remove_all(dir);
-  io::RunOptions opt;
-  opt.out_dir = dir;
-  opt.quiet = true;
-  (void)io::run(s, opt);
+  (void)run_into(s, dir);
   vtkNew<vtkXMLUnstructuredGridReader> r;
   r->SetFileName((dir / "frames/particles_000000.vtu").c_str());
   r->Update();

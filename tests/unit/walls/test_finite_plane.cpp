@@ -348,11 +348,7 @@ TEST(FinitePlaneWall, WallsFileReadsBackAndMassOutputFollowsTheDischarge) {
                                "output: {every: 0.06, progress: false, mass: {every: 0.01, point: [0, 0, 0], normal: "
                                "[0, 0, 1]}}\n"));
   const fs::path dir = fs::temp_directory_path() / "grains_test_finite_plane";
-  fs::remove_all(dir);
-  io::RunOptions opt;
-  opt.out_dir = dir;
-  opt.quiet = true;
-  const auto sum = io::run(s, opt);
+  const auto sum = run_into(s, dir);
   // mass.csv: header and one row per 0.01 s (first and last included).
   std::ifstream in(dir / "mass.csv");
   std::string line;
