@@ -41,7 +41,9 @@ void register_io_docs() {
          "particles exert on the wall (fx_N, fy_N, fz_N), the torque about its load point (tx_Nm, ty_Nm, tz_Nm: a "
          "mesh wall's torque_point, by default on its rotation axis; another wall's position) and, for a mesh wall, "
          "the torque about its rotation axis (axial_torque_Nm: what a drum's or a mixer's drive supplies is minus "
-         "it). summary.json (stage_details) has each wall's mean over the rows from average_after on, and its last "
+         "it), the wall's position (px_m, py_m, pz_m: a plane's point, a mesh's offset, a cylinder's base) and, for "
+         "a controlled wall (walls.control), its speed towards the grains, the area its stress acts on and that "
+         "normal stress (speed_mps, area_m2, stress_Pa; empty for other walls). summary.json (stage_details) has each wall's mean over the rows from average_after on, and its last "
          "row. Measured only when asked: without this block no wall stage sums loads.",
          {sim::key("every", K::Number, "simulated time between rows; default the VTK frame cadence")
               .si("s").in(0, inf, true),
@@ -717,8 +719,59 @@ class CaseParser {
         wall.material = material(w, d, ctx);
         wall.velocity = v_.vec3(w, d, "velocity", ctx);
         wall.where = v_.where(w);
+        if constexpr (K::controllable)
+          if (const YAML::Node cn = w["control"]) parse_control(cn, w, ctx + ".control", wall);
         c_.scene.walls.add(wall);
       });
+    }
+  }
+
+  // walls[].control (sim/walls/wall_control.hpp): one of stress, force, strain_rate.
+  template <class K>
+  void parse_control(const YAML::Node& n, const YAML::Node& w, const std::string& ctx, K& wall) {
+    const auto& d = doc("walls.control");
+    if (!v_.check_map(n, d, ctx)) return;
+    sim::WallControl& c = wall.control;
+    c.where = v_.where(n);
+    int given = 0;
+    for (const char* k : {"stress", "force", "strain_rate"}) given += n[k] ? 1 : 0;
+    if (given != 1) {
+      v_.error(n, ctx, "give exactly one of stress, force or strain_rate (" + std::to_string(given) + " given)");
+      return;
+    }
+    if (w["velocity"])
+      v_.error(w["velocity"], ctx, "a controlled wall's velocity is set by its control; remove velocity");
+    using M = sim::WallControl::Mode;
+    c.mode = n["stress"] ? M::Stress : n["force"] ? M::Force : M::StrainRate;
+    const char* target_key = n["stress"] ? "stress" : n["force"] ? "force" : "strain_rate";
+    c.target = v_.number(n, d, target_key, ctx, 0);
+    if (c.mode != M::StrainRate && !(c.target > 0))
+      v_.error(n[target_key], ctx,
+               std::string(target_key) + " must be compressive, > 0 (the grains push on the wall; it cannot pull "
+               "them): got " + n[target_key].Scalar());
+    if (c.mode == M::StrainRate && c.target == 0)
+      v_.error(n[target_key], ctx, "strain_rate must not be 0 (a wall at rest needs no control)");
+    c.area = v_.number(n, d, "area", ctx, 0);
+    if (n["area"] && c.mode != M::Stress) v_.error(n["area"], ctx, "area goes with stress");
+    c.max_speed = v_.number(n, d, "max_speed", ctx, 0);
+    if (c.mode != M::StrainRate && !n["max_speed"])
+      v_.error(n, ctx, "a servo needs max_speed, the fastest the wall may move (e.g. a few percent of a grain "
+                       "diameter per the time a sound wave crosses the sample)");
+    if (c.mode == M::StrainRate && n["max_speed"])
+      v_.error(n["max_speed"], ctx, "max_speed goes with stress or force (a strain rate sets the speed)");
+    c.gain = v_.number(n, d, "gain", ctx, 0.5);
+    if (n["gain"] && c.mode == M::StrainRate) v_.error(n["gain"], ctx, "gain goes with stress or force");
+    if constexpr (requires { wall.normal; }) {
+      c.direction = wall.normal;
+      if (n["direction"]) v_.error(n["direction"], ctx, "a plane moves along its normal; remove direction");
+    } else {
+      if (!n["direction"]) v_.error(n, ctx, "give direction, the direction the wall moves towards the grains");
+      const sim::Vec3 dir = v_.vec3(n, d, "direction", ctx, sim::Vec3(0, 0, 1));
+      if (n["direction"] && dir.norm() == 0) v_.error(n["direction"], ctx, "direction must not be the zero vector");
+      if (dir.norm() > 0) c.direction = dir.normalized();
+      if (c.mode == M::StrainRate)
+        v_.error(n["strain_rate"], ctx, "strain_rate moves plane walls (it needs the facing plane); give a mesh a "
+                                        "velocity, or a servo");
     }
   }
 

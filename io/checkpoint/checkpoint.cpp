@@ -112,6 +112,16 @@ void write_walls(const h5::File& f, const sim::Walls& walls) {
     for (const auto& w : walls.of<K>()) pos.push_back(w.position()), vel.push_back(w.velocity);
     f.write_vector(wall_position_dataset<K>(), pos, 1, "m");
     f.write_vector(std::string("/walls/") + K::kind + "_velocity", vel, 1, "m/s");
+    if constexpr (K::controllable) {
+      // Controlled walls: the speed of the next step, the travel so far, the speed bound.
+      bool any = false;
+      std::vector<double> ctl;
+      for (const auto& w : walls.of<K>()) {
+        any = any || w.control.active();
+        ctl.insert(ctl.end(), {w.control.speed, w.control.travel, w.control.max_speed});
+      }
+      if (any) f.write_vector(std::string("/walls/") + K::kind + "_control", ctl, 3, "");
+    }
     if constexpr (requires(K k) { k.motion_time; k.surface->triangles(); }) {
       // A kind with its own motion clock (its pose is a function of it), and
       // the size of its surface (a restart must use the same mesh).
@@ -404,6 +414,24 @@ void read_walls(const h5::File& f, sim::Walls& walls) {
     std::vector<sim::Vec3> pos;
     if (!ws.empty()) f.read_vector(wall_position_dataset<K>(), pos, ws.size(), 1);
     for (std::size_t w = 0; w < ws.size(); ++w) ws[w].position() = pos[w];
+    if constexpr (K::controllable) {
+      bool any = false;
+      for (const auto& w : ws) any = any || w.control.active();
+      const std::string name = std::string("/walls/") + K::kind + "_control";
+      if (any && !f.exists(name))
+        throw std::runtime_error(f.path() + ": has no state of controlled walls (" + name +
+                                 "); it was written by a case without walls[].control");
+      if (any) {
+        std::vector<double> ctl;
+        f.read_vector(name, ctl, ws.size(), 3);
+        for (std::size_t w = 0; w < ws.size(); ++w) {
+          auto& c = ws[w].control;
+          if (!c.active()) continue;
+          c.speed = ctl[3 * w], c.travel = ctl[3 * w + 1], c.max_speed = ctl[3 * w + 2];
+          if constexpr (!requires { ws[w].motion_time; }) ws[w].velocity = c.speed * c.direction;
+        }
+      }
+    }
     if constexpr (requires(K k) { k.motion_time; k.place(0.0); }) {
       std::vector<double> clock;
       if (!ws.empty()) f.read_vector(std::string("/walls/") + K::kind + "_motion_time", clock, ws.size(), 1);

@@ -12,7 +12,9 @@ namespace grains::io {
 namespace fs = std::filesystem;
 
 namespace {
-const char* kHeader = "step,time_s,wall,name,kind,fx_N,fy_N,fz_N,tx_Nm,ty_Nm,tz_Nm,axial_torque_Nm";
+const char* kHeader =
+    "step,time_s,wall,name,kind,fx_N,fy_N,fz_N,tx_Nm,ty_Nm,tz_Nm,axial_torque_Nm,px_m,py_m,pz_m,speed_mps,area_m2,"
+    "stress_Pa";
 }
 
 WallLoadOutput::WallLoadOutput(fs::path dir, WallLoadConfig cfg, std::int64_t every_steps)
@@ -75,11 +77,21 @@ void WallLoadOutput::write_rows(const sim::Scene& s) {
         ++m.rows;
       }
       if (out_.is_open()) {
-        char buf[512];
-        std::snprintf(buf, sizeof buf, "%lld,%.10g,%zu,%s,%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n",
-                      static_cast<long long>(s.clock.step), s.clock.time, k, m.name.c_str(), m.kind.c_str(),
-                      m.last_force[0], m.last_force[1], m.last_force[2], m.last_torque[0], m.last_torque[1],
-                      m.last_torque[2], axial);
+        char buf[768];
+        const sim::Vec3& x = w.position();
+        int len = std::snprintf(buf, sizeof buf, "%lld,%.10g,%zu,%s,%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g",
+                                static_cast<long long>(s.clock.step), s.clock.time, k, m.name.c_str(), m.kind.c_str(),
+                                m.last_force[0], m.last_force[1], m.last_force[2], m.last_torque[0], m.last_torque[1],
+                                m.last_torque[2], axial, x.x(), x.y(), x.z());
+        // A controlled wall: its speed along its direction, the area and the normal stress (when it has an area).
+        const sim::WallControl& c = w.control;
+        const int room = static_cast<int>(sizeof buf) - len;
+        if (c.active() && c.area_now > 0)
+          len += std::snprintf(buf + len, room, ",%.10g,%.10g,%.10g\n", c.speed, c.area_now, c.load / c.area_now);
+        else if (c.active())
+          len += std::snprintf(buf + len, room, ",%.10g,,\n", c.speed);
+        else
+          len += std::snprintf(buf + len, room, ",,,\n");
         out_ << buf;
       }
     });

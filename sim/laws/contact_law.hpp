@@ -55,6 +55,8 @@ struct ContactLaw {
   struct Result {
     Eigen::Vector3d force;         // on body i; body j receives -force
     Eigen::Vector3d rolling_torque;  // on body i; body j receives minus it
+    double stiffness;                // the normal law's tangent stiffness dF/d(overlap) (a servo wall's gain)
+    double damping;                  // and its dashpot dF/d(overlap rate)
   };
 
   /// v_rel: velocity of i relative to j at the contact point; w_rel = omega_i - omega_j
@@ -68,6 +70,8 @@ struct ContactLaw {
         std::fill_n(hist, history_size, 0.0);
         out.force.setZero();
         out.rolling_torque.setZero();
+        out.stiffness = 0;
+        out.damping = 0;
         return out;
       }
     }
@@ -75,6 +79,8 @@ struct ContactLaw {
     const double vn = v_rel.dot(n);
     const auto ns = normal_state(g, -vn, m, p, hist);
     out.force = n * (ns.force - C::force(g.overlap, g.radius, p));
+    out.stiffness = ns.stiffness(p);
+    out.damping = ns.damping(p);
     if constexpr (T::history_size > 0) {
       const Eigen::Vector3d vt = v_rel - n * vn;
       out.force += T::force(n, vt, ns, m, p, dt, hist);

@@ -27,6 +27,7 @@ struct HertzState {
   double sqrt_Rd;  // sqrt(R* d), the Hertz contact radius
   double scale;    // sqrt(m* K d^{1/2}): the normal damping coefficient is a times this
   GRAINS_INLINE double stiffness(const PairParams& p) const { return 2.0 * p.E_eff * sqrt_Rd; }
+  GRAINS_INLINE double damping(const PairParams& p) const { return p.damping * scale; }
   /// Mindlin: k_t = 8 G* sqrt(R* d).
   GRAINS_INLINE double tangential_stiffness(const PairParams& p) const { return 8.0 * p.G_eff * sqrt_Rd; }
   /// eta_t = a sqrt(2/3) sqrt(m k_t) = a 2 sqrt(G*/E*) sqrt(m K d^{1/2}) (no extra square root).

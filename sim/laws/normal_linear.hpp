@@ -38,6 +38,7 @@ struct LinearState {
   double kn, gn;  // this contact's k_n and gamma_n
   double kappa, x;  // k_t / k_n, gamma_t / gamma_n
   GRAINS_INLINE double stiffness(const PairParams&) const { return kn; }
+  GRAINS_INLINE double damping(const PairParams&) const { return gn; }
   GRAINS_INLINE double tangential_stiffness(const PairParams&) const { return kappa * kn; }
   GRAINS_INLINE double tangential_damping(const PairParams&) const { return x * gn; }
 };

@@ -14,6 +14,9 @@
 //   stiffness(p)
 //              tangent normal stiffness S_n = dF_n/d(overlap) of the elastic
 //              part, N/m (the rolling spring scales with it)
+//   damping(p)
+//              the normal dashpot dF_n/d(overlap rate), N s/m (a servo wall's
+//              gain, sim/walls/wall_control.hpp)
 //   tangential_stiffness(p), tangential_damping(p)
 //              the tangential spring (N/m) and dashpot (N s/m) this normal law
 //              pairs with: Hertz gives Mindlin's k_t = 8 G* sqrt(R* d) and the

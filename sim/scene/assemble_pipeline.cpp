@@ -17,6 +17,7 @@
 #include "sim/scene/body_forces.hpp"
 #include "sim/scene/build_scene.hpp"
 #include "sim/walls/wall_contact_stage.hpp"
+#include "sim/walls/wall_control_stage.hpp"
 
 namespace grains::sim {
 
@@ -167,6 +168,7 @@ Pipeline assemble_pipeline(const Scene& s, const SceneConfig& c) {
   else
     add_integrators<false>(p, n);
   if (n.moving_walls && c.integrator == Integrator::Verlet) p.add(std::make_unique<MoveWalls>());
+  if (s.walls.controlled()) p.add(std::make_unique<ControlWalls>());
   if (c.growth.enabled) {
     if (c.integrator != Integrator::Verlet)
       throw SetupError("radius_growth (isotropic compression) runs with the Verlet integrator only; remove "

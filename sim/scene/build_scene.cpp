@@ -15,6 +15,7 @@
 #include "sim/laws/contact_law.hpp"
 #include "sim/laws/normal_laws.hpp"
 #include "sim/scene/placement.hpp"
+#include "sim/walls/wall_control_stage.hpp"
 #include "sim/integrate/clump_bodies.hpp"
 
 namespace grains::sim {
@@ -106,7 +107,7 @@ SceneNeeds scene_needs(const SceneConfig& c, const PairTable& pairs) {
   n.rotation = n.tangential || n.rolling || n.ellipsoids;
   n.gravity = c.gravity.squaredNorm() > 0;
   n.walls = c.walls.count() > 0;
-  n.moving_walls = c.walls.max_speed() > 0;
+  n.moving_walls = c.walls.max_speed() > 0 || c.walls.controlled();
   with_type_named(NormalLaws{}, c.normal.name, [&]<class N>() { n.normal_history = normal_history<N>(); });
   n.history_size = n.tangential_history + n.rolling_history + n.normal_history;
   if (c.integrator == Integrator::Arkode && n.history_size > 0) {
@@ -347,6 +348,7 @@ Scene build_scene(SceneConfig& c) {
       if (!e.empty()) throw SetupError(e);
     }
   });
+  setup_wall_controls(s, c.integrator == Integrator::Arkode, c.integrator_where);
   double rmax = 0;
   for (const auto r : s.particles.radius) rmax = std::max(rmax, r);
   // Grains inserted later: their largest sphere or ellipsoid radius, or clump ball.

@@ -69,6 +69,8 @@ struct GrowthServo {
 struct WallLoad {
   Vec3 force{0, 0, 0};
   Vec3 torque{0, 0, 0};
+  double stiffness = 0;  // the sum of its contacts' normal stiffnesses and dashpots (a servo's gain)
+  double damping = 0;
 };
 
 struct Scene {

@@ -19,6 +19,7 @@ namespace grains::sim {
 struct CylinderWall : WallCommon {
   static constexpr const char* kind = "cylinder";
   static constexpr const char* position_name = "base";
+  static constexpr bool controllable = false;  // walls[].control (wall_control.hpp)
 
   contact::CylinderSurface surface{Vec3(0, 0, 0), Vec3(0, 0, 1), 1, 0, 1, true};
 

@@ -41,6 +41,7 @@ namespace grains::sim {
 struct MeshWall : WallCommon {
   static constexpr const char* kind = "mesh";
   static constexpr const char* position_name = "offset";
+  static constexpr bool controllable = true;  // walls[].control (wall_control.hpp)
   static constexpr bool tagged = true;  // slots carry the contact's normal, and a mask of those held (ParticleStore::wall_tags)
   static constexpr int kMaxFound = 16;  // contacts looked at per particle and step
 
@@ -135,7 +136,7 @@ struct MeshWall : WallCommon {
   void place(double t) {
     motion_time = t;
     moving = velocity.squaredNorm() > 0 || angular_velocity != 0 ||
-             (vibration_frequency > 0 && vibration_amplitude.squaredNorm() > 0);
+             (vibration_frequency > 0 && vibration_amplitude.squaredNorm() > 0) || control.active();
     const double s = ramp_factor(t), integral = ramp_integral(t);
     const double ds = ramp > 0 && t - start > 0 && t - start < ramp ? 1 / ramp : 0;
     offset = velocity * integral;
@@ -144,6 +145,10 @@ struct MeshWall : WallCommon {
       const double om = 2 * M_PI * vibration_frequency, u = std::max(0.0, t - start);
       offset += vibration_amplitude * (s * std::sin(om * u));
       v_now += vibration_amplitude * (ds * std::sin(om * u) + s * om * std::cos(om * u));
+    }
+    if (control.active()) {  // the controlled translation, on top of the prescribed motion
+      offset += control.travel * control.direction;
+      v_now += control.speed * control.direction;
     }
     const double angle = angular_velocity * integral;
     R = Eigen::AngleAxisd(angle, axis).toRotationMatrix();

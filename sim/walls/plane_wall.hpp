@@ -23,6 +23,7 @@ namespace grains::sim {
 struct PlaneWall : WallCommon {
   static constexpr const char* kind = "plane";
   static constexpr const char* position_name = "point";
+  static constexpr bool controllable = true;  // walls[].control (wall_control.hpp)
 
   Vec3 point{0, 0, 0};   // on the plane; the centre of the disc and of its hole when finite
   Vec3 normal{0, 0, 1};  // unit; particles are on this side (infinite planes)

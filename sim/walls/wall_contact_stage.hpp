@@ -26,10 +26,11 @@ namespace grains::sim {
 
 template <class Law, bool Rotation = Law::needs_rotation>
 struct WallContact {
-  /// Applies the contact to particle i; returns the force on it.
+  /// Applies the contact to particle i; returns the force on it (and, when
+  /// asked, the rolling torque and the normal stiffness and dashpot).
   static GRAINS_INLINE Vec3 apply(ParticleStore& p, std::size_t i, const contact::ContactGeometry& g,
                                   const Vec3& wall_velocity, const PairParams& pp, double dt, double* hist,
-                                  Vec3* rolling = nullptr) {
+                                  Vec3* rolling = nullptr, double* stiffness = nullptr, double* damping = nullptr) {
     Vec3 v_rel = p.v[i] - wall_velocity;
     Vec3 w_rel = Vec3::Zero();
     Vec3 ci;
@@ -44,6 +45,8 @@ struct WallContact {
       p.torque[i] += ci.cross(r.force) + r.rolling_torque;
       if (rolling) *rolling = r.rolling_torque;
     }
+    if (stiffness) *stiffness = r.stiffness;
+    if (damping) *damping = r.damping;
     return r.force;
   }
 };
@@ -168,12 +171,16 @@ class WallStage final : public Stage {
           }
         }
         Vec3 rolling{0, 0, 0};
+        double k = 0, c = 0;
         const Vec3 f = WallContact<Law, Law::needs_rotation || Shapes>::apply(
-            p, i, g, wall.surface_velocity(g.point), s.pairs(p.material[i], wall.material), s.clock.dt, h, &rolling);
+            p, i, g, wall.surface_velocity(g.point), s.pairs(p.material[i], wall.material), s.clock.dt, h, &rolling,
+            Loads ? &k : nullptr, Loads ? &c : nullptr);
         if constexpr (Loads) {
           WallLoad& l = partial_[threads ? static_cast<std::size_t>(omp_get_thread_num()) : 0];
           l.force -= f;
           l.torque -= (g.point - point).cross(f) + rolling;
+          l.stiffness += k;
+          l.damping += c;
         }
       });
       if constexpr (H > 0) {
@@ -197,7 +204,7 @@ class WallStage final : public Stage {
     });
     if constexpr (Loads) {
       load = WallLoad{};
-      for (const auto& l : partial_) load.force += l.force, load.torque += l.torque;
+      for (const auto& l : partial_) load.force += l.force, load.torque += l.torque, load.stiffness += l.stiffness, load.damping += l.damping;
     }
   }
 

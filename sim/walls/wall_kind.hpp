@@ -2,6 +2,7 @@
 // What every wall kind shares, and what a kind supplies (docs/architecture.md:
 // how to add a wall kind). A kind is a struct deriving from WallCommon with
 //   kind, position_name        case-file type (walls[].type) and the name of its moving reference point
+//   controllable               whether it takes walls[].control (wall_control.hpp)
 //   summary(), keys()          its documentation and case-file keys, besides type, name, material, velocity
 //   from_keys(KeyReader&)      the wall from its keys (the parser reports errors with their location)
 //   slots(ellipsoids)          history slots per particle (contacts a grain can have with it at once)
@@ -39,6 +40,7 @@
 
 #include "contact/contact_geometry.hpp"
 #include "sim/keys/key_reader.hpp"
+#include "sim/walls/wall_control.hpp"
 
 namespace grains::sim {
 
@@ -49,7 +51,9 @@ struct WallCommon {
   std::string name;
   std::string where;  // its place in the case file (file:line), for messages
   int material = 0;
-  Vec3 velocity{0, 0, 0};  // prescribed, constant
+  Vec3 velocity{0, 0, 0};  // prescribed, constant (a controlled wall: set by its control each step)
+  /// A controlled motion along a direction (wall_control.hpp); none by default.
+  WallControl control;
   /// The wall's history slots in each particle's wall-history field: from
   /// history_slot on, history_slots of them (set by build_scene from slots()).
   int history_slot = 0;

@@ -8,7 +8,9 @@ double Walls::max_displacement(double t) const {
   double m = 0;
   for_each([&](const auto& w, std::size_t) {
     if constexpr (requires { w.max_displacement(t); })
-      m = std::max(m, w.max_displacement(t));  // a kind that knows its motion's history
+      m = std::max(m, w.max_displacement(t) + w.control.max_speed * t);  // a kind that knows its motion's history
+    else if (w.control.active())  // its speed changes, within its bound
+      m = std::max(m, w.control.max_speed * t);
     else
       m = std::max(m, w.max_speed() * t);
   });
@@ -17,7 +19,9 @@ double Walls::max_displacement(double t) const {
 
 double Walls::max_speed() const {
   double m = 0;
-  for_each([&](const auto& w, std::size_t) { m = std::max(m, w.max_speed()); });
+  for_each([&](const auto& w, std::size_t) {
+    m = std::max(m, w.control.active() ? w.max_speed() + w.control.max_speed : w.max_speed());
+  });
   return m;
 }
 
@@ -31,6 +35,7 @@ std::string Walls::describe() const {
 
 void Walls::advance(double dt) {
   for_each([&](auto& w, std::size_t) {
+    if (w.control.active()) w.control.travel += w.control.speed * dt;  // (a plane's velocity is its speed)
     if constexpr (requires { w.advance(dt); })
       w.advance(dt);
     else

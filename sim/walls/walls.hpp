@@ -59,6 +59,12 @@ struct Walls {
   /// A bound on the speed of any wall's surface at any time (0: no wall moves).
   double max_speed() const;
   void advance(double dt);
+  /// Whether any wall has a controlled motion (walls[].control).
+  bool controlled() const {
+    bool any = false;
+    for_each([&](const auto& w, std::size_t) { any = any || w.control.active(); });
+    return any;
+  }
 
  private:
   template <class V, class F>
