@@ -34,7 +34,32 @@ void register_io_docs() {
           sim::key("progress_interval", K::Number, "wall-clock time between progress lines").def("2").si("s").in(0, inf),
           sim::key("solid_fraction", K::Map, "solid-fraction field as VTK image data (see output.solid_fraction)"),
           sim::key("mass", K::Map, "grains and their mass against time in mass.csv, e.g. silo discharge (see output.mass)"),
-          sim::key("wall_loads", K::Map, "force and torque on each wall against time in wall_loads.csv (see output.wall_loads)")}});
+          sim::key("wall_loads", K::Map, "force and torque on each wall against time in wall_loads.csv (see output.wall_loads)"),
+          sim::key("stress", K::Map, "stress tensor, solid fraction and velocity of a region and their profiles against time (see output.stress)")}});
+    sim::register_effect_doc(
+        {"output.stress", "output: {stress: {...}}",
+         "The stress tensor of a region, contact and kinetic parts, with its solid fraction and mean velocity, one "
+         "row per interval and at the last step in OUTDIR/stress.csv (step, time_s, volume_m3, grains, solid_fraction, vx..vz_mps, the "
+         "total stress sxx..syz_Pa, its kinetic part kxx..kyz_Pa, pressure_Pa); with a profile, the same per bin "
+         "along an axis in OUTDIR/profile.csv (bin, position_m of its centre, ...). Compressive stress > 0. "
+         "Contact part: Love-Weber, (1/V) sum over contacts of w F (x) b, the branch b joining the two centres (from "
+         "a wall's contact point to the centre), w the fraction of the branch inside the region or bin (so a bin's "
+         "stress is the method-of-planes stress averaged over it: in a static bed sigma_zz is the weight above per "
+         "area, however thin the bins); measured on the step itself by the force stages, which do nothing for it "
+         "on other steps. Kinetic part: "
+         "sum m (v - u)(v - u) / V, u the mean velocity of the grain's bin (of the region without a profile). "
+         "Solid fraction: per bin the exact volume of each sphere inside the slab (an ellipsoid as its "
+         "equal-volume sphere), of the region the grains whose centre is in it. The region is by default the box: "
+         "along each axis the periodic domain, else the gap between the infinite planes facing each other "
+         "(measured each time: a servo box), else the domain. At the end summary.json has the means over the rows "
+         "from average_after on and OUTDIR/profile_mean.csv the mean profile (both read back from the files, so a "
+         "restarted run's means cover all of it). Summed over the ranks. Verlet only; not with clumps.",
+         {sim::key("every", K::Number, "simulated time between rows; default the VTK frame cadence").si("s").in(0, inf, true),
+          sim::key("every_steps", K::Integer, "steps between rows (instead of every)").in(1, 1e15),
+          sim::key("average_after", K::Number, "the means are over rows at or after this time").def(0.0).si("s").in(0, inf),
+          sim::key("region", K::Map, "{min: [x, y, z], max: [x, y, z]}: the region measured; default the box"),
+          sim::key("profile_axis", K::String, "the axis of the profile").one_of({"x", "y", "z"}),
+          sim::key("bins", K::Integer, "profile bins along profile_axis across the region").in(1, 1e6)}});
     sim::register_effect_doc(
         {"output.wall_loads", "output: {wall_loads: {...}}",
          "One row per wall and interval in OUTDIR/wall_loads.csv: step, time_s, wall, name, kind, the force the "
@@ -890,6 +915,29 @@ class CaseParser {
         c.every = v_.number(m, md, "every", ctx, 0);
         c.every_steps = v_.integer(m, md, "every_steps", ctx, 0);
         c.average_after = v_.number(m, md, "average_after", ctx, 0);
+      }
+    }
+    if (const YAML::Node m = n["stress"]) {
+      const auto& md = doc("output.stress");
+      const std::string ctx = "output.stress";
+      if (v_.check_map(m, md, ctx)) {
+        auto& c = o.stress;
+        c.enabled = true;
+        c.where = v_.where(m);
+        if (m["every"] && m["every_steps"]) v_.error(m["every_steps"], ctx, "give either every or every_steps, not both");
+        c.every = v_.number(m, md, "every", ctx, 0);
+        c.every_steps = v_.integer(m, md, "every_steps", ctx, 0);
+        c.average_after = v_.number(m, md, "average_after", ctx, 0);
+        if (const YAML::Node r = m["region"]) {
+          const sim::Region reg = region(r, ctx + ".region");
+          c.region_given = true;
+          c.lo = reg.lo, c.hi = reg.hi;
+        }
+        if (static_cast<bool>(m["profile_axis"]) != static_cast<bool>(m["bins"]))
+          v_.error(m, ctx, "a profile needs both profile_axis and bins");
+        const std::string axis = v_.string(m, md, "profile_axis", ctx, "");
+        c.axis = axis == "x" ? 0 : axis == "y" ? 1 : axis == "z" ? 2 : -1;
+        c.bins = c.axis >= 0 ? static_cast<int>(v_.integer(m, md, "bins", ctx, 0)) : 0;
       }
     }
     if (const YAML::Node m = n["mass"]) {

@@ -8,6 +8,7 @@
 #include "io/case/validator.hpp"
 #include "io/output/mass_output.hpp"
 #include "io/output/solid_fraction_output.hpp"
+#include "io/output/stress_output.hpp"
 #include "io/output/wall_load_output.hpp"
 #include "sim/scene/scene_config.hpp"
 
@@ -22,6 +23,7 @@ struct OutputConfig {
   SolidFractionConfig solid_fraction;
   MassOutputConfig mass;
   WallLoadConfig wall_loads;
+  StressConfig stress;
 };
 
 /// Periodic HDF5 checkpoints (io/checkpoint): cadence and retention.

@@ -31,6 +31,18 @@ Simulation make_simulation(Case c) {
   Simulation s;
   s.c = std::move(c);
   s.scene = sim::build_scene(s.c.scene);
+  if (const auto& st = s.c.output.stress; st.enabled) {
+    // The probe gathers one force evaluation per step, of spheres' or ellipsoids' centres.
+    if (s.c.scene.integrator == sim::Integrator::Arkode)
+      throw sim::SetupError(st.where + ": output.stress measures with the Verlet integrator (ARKODE evaluates "
+                            "the forces at several trial states per step); use time.integrator: verlet");
+    bool clumps = false;
+    for (const auto& set : s.c.scene.sets) clumps = clumps || set.shape.kind == sim::ShapeConfig::Kind::Clump;
+    for (const auto& in : s.c.scene.insertions) clumps = clumps || in.grains.shape.kind == sim::ShapeConfig::Kind::Clump;
+    if (clumps)
+      throw sim::SetupError(st.where + ": output.stress does not measure clumps (their contacts' branch vectors "
+                            "would have to join the bodies' centres, not the balls')");
+  }
   s.rayleigh_time = sim::rayleigh_time(s.c.scene);
   s.pipeline = sim::assemble_pipeline(s.scene, s.c.scene);
   return s;
@@ -167,6 +179,10 @@ OutputStages add_output_stages(Simulation& s, const RunOptions& opt) {
   if (o.wall_loads.enabled) {
     const auto& wl = o.wall_loads;
     s.pipeline.add(std::make_unique<WallLoadOutput>(opt.out_dir, wl, cadence(wl.every_steps, wl.every)));
+  }
+  if (o.stress.enabled) {
+    const auto& st = o.stress;
+    s.pipeline.add(std::make_unique<StressOutput>(opt.out_dir, st, cadence(st.every_steps, st.every)));
   }
   if (o.progress && !opt.quiet) s.pipeline.add(std::make_unique<Progress>(*opt.log, o.progress_interval));
   // Last of the output phase: a checkpoint holds the frames of its own step.

@@ -16,6 +16,7 @@
 #include "sim/laws/contact_law.hpp"
 #include "sim/neighbor/pair_geometry.hpp"
 #include "sim/laws/entry_forces.hpp"
+#include "sim/laws/probe_entries.hpp"
 #include "sim/scene/stage.hpp"
 
 namespace grains::sim {
@@ -183,6 +184,7 @@ class ShapePairContactStage final : public Stage {
           p.f[j] -= f;
           p.torque[i] += ti;
           p.torque[j] += tj;
+          if (s.stress_probe) s.stress_probe->add_pair(0, p, i, j, f);
         },
         [](std::uint32_t) {});
   }
@@ -208,6 +210,7 @@ class ShapePairContactStage final : public Stage {
           [&](std::uint32_t k) { e_.zero<true>(k); });
     }
     gather_entry_forces<true>(s.particles, nl, e_);
+    if (s.stress_probe) probe_entries(s, nl, e_.f);
   }
 
   EntryForces e_;

@@ -7,6 +7,7 @@
 #include "contact/sphere.hpp"
 #include "sim/laws/contact_law.hpp"
 #include "sim/laws/entry_forces.hpp"
+#include "sim/laws/probe_entries.hpp"
 #include "sim/scene/stage.hpp"
 
 namespace grains::sim {
@@ -20,8 +21,10 @@ class PairContactStage final : public Stage {
   void run(Scene& s) override {
     if (s.deterministic)
       run_deferred(s);
+    else if (s.stress_probe)  // a step the stress is measured
+      run_direct<true>(s);
     else
-      run_direct(s);
+      run_direct<false>(s);
   }
 
  private:
@@ -74,7 +77,9 @@ class PairContactStage final : public Stage {
     return true;
   }
 
-  // Serial: forces added as they come (fastest; order = list order).
+  // Serial: forces added as they come (fastest; order = list order). With
+  // Probe, each contact also goes into the stress probe.
+  template <bool Probe>
   void run_direct(Scene& s) {
     ParticleStore& p = s.particles;
     const NeighborList& nl = s.neighbors;
@@ -90,6 +95,7 @@ class PairContactStage final : public Stage {
           p.torque[i] += ti;
           p.torque[j] += tj;
         }
+        if constexpr (Probe) s.stress_probe->add_pair(0, p, i, j, f);
       }
   }
 
@@ -111,6 +117,7 @@ class PairContactStage final : public Stage {
       }
     }
     gather_entry_forces<Rot>(s.particles, nl, e_);
+    if (s.stress_probe) probe_entries(s, nl, e_.f);
   }
 
   EntryForces e_;

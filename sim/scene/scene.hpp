@@ -11,6 +11,7 @@
 #include "sim/neighbor/neighbor_list.hpp"
 #include "sim/state/body_store.hpp"
 #include "sim/state/particle_store.hpp"
+#include "sim/scene/stress_probe.hpp"
 #include "sim/walls/walls.hpp"
 
 namespace grains::sim {
@@ -95,6 +96,9 @@ struct Scene {
   /// Each wall's load this step, from this rank's particles; empty unless
   /// measured (output.wall_loads), so that no wall stage computes it otherwise.
   std::vector<WallLoad> wall_loads;
+  /// The contact stress gathered by the force stages on the steps it is
+  /// measured (output.stress); null on every other step.
+  StressProbe* stress_probe = nullptr;
   /// The memory the case's grains will need, estimated at set-up (build_scene.hpp).
   struct Memory {
     std::int64_t particles = 0;  // particle records the case asks for (sets and insertions)

@@ -92,10 +92,13 @@ class WallStage final : public Stage {
   }
   Phase phase() const override { return Phase::Force; }
   void run(Scene& s) override {
-    const bool loads = !s.wall_loads.empty();
+    // Loads (and the stress probe's contacts) only when measured.
+    const bool loads = !s.wall_loads.empty() || s.stress_probe;
     s.walls.for_each([&](const auto& wall, std::size_t w) {
       const auto& items = w < s.neighbors.wall_items.size() ? s.neighbors.wall_items[w] : no_items_;
-      if (loads)
+      if (loads && s.wall_loads.empty())
+        run_wall<true>(s, wall, s.neighbors.wall_near[w], items, unused_);
+      else if (loads)
         run_wall<true>(s, wall, s.neighbors.wall_near[w], items, s.wall_loads[w]);
       else
         run_wall<false>(s, wall, s.neighbors.wall_near[w], items, s.wall_loads.empty() ? unused_ : s.wall_loads[w]);
@@ -181,6 +184,8 @@ class WallStage final : public Stage {
           l.torque -= (g.point - point).cross(f) + rolling;
           l.stiffness += k;
           l.damping += c;
+          if (s.stress_probe)  // the branch from the contact point to the centre
+            s.stress_probe->add(threads ? omp_get_thread_num() : 0, p.x[i], f, p.x[i] - g.point);
         }
       });
       if constexpr (H > 0) {

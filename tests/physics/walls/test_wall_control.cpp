@@ -30,12 +30,13 @@ using sim::PlaneWall;
 
 // A bed of `count` spheres (r 0.4-0.5 mm, mu 0.3) in a 10 x 10 x 20 mm
 // region, no gravity, walls of friction 0, then `walls` (YAML list items).
-std::string box_case(int count, const std::string& walls, double end, const std::string& extra = "") {
+std::string box_case(int count, const std::string& walls, double end, const std::string& extra = "",
+                     double mu = 0.3) {
   std::ostringstream y;
   y << "domain: {min: [-0.001, -0.001, -0.001], max: [0.011, 0.011, 0.021]}\n"
        "gravity: [0, 0, 0]\n"
        "materials:\n"
-    << material("grain", 2500, 1e7, 0.3, 0.5, 0.3) << material("wall", 2500, 1e7, 0.3, 0.5, 0.0)
+    << material("grain", 2500, 1e7, 0.3, 0.5, mu) << material("wall", 2500, 1e7, 0.3, 0.5, 0.0)
     << "particles:\n"
        "  - {name: bed, material: grain, radius: {distribution: uniform, min: 0.0004, max: 0.0005}, count: "
     << count
@@ -221,6 +222,177 @@ TEST(WallControlErrors, AreLocated) {
   e = with("  - {type: cylinder, name: c, base: [0.005, 0.005, 0], radius: 0.005, height: 0.02, material: wall, "
            "control: {force: 1, max_speed: 0.1}}\n");
   EXPECT_NE(e.find("control"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace grains::test
+
+// ---- Stress measurement (output.stress) ----
+namespace grains::test {
+namespace {
+
+struct Csv {
+  std::vector<std::string> header;
+  std::vector<std::vector<double>> rows;
+  int col(const std::string& name) const {
+    for (std::size_t k = 0; k < header.size(); ++k)
+      if (header[k] == name) return static_cast<int>(k);
+    throw std::runtime_error("no column " + name);
+  }
+};
+Csv read_csv(const std::filesystem::path& f) {
+  Csv c;
+  std::ifstream in(f);
+  std::string line, cell;
+  std::getline(in, line);
+  std::stringstream h(line);
+  while (std::getline(h, cell, ',')) c.header.push_back(cell);
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    std::vector<double> v;
+    while (std::getline(ss, cell, ',')) v.push_back(std::stod(cell));
+    c.rows.push_back(v);
+  }
+  return c;
+}
+
+TEST(StressOutput, TheLoveWeberStressOfAFrictionlessBoxIsWhatItsServoWallsHold) {
+  // Without friction (grains and walls) and without gravity, the stress of
+  // the whole box in equilibrium is the boundary's: each wall's stress on the
+  // normal component, whatever the packing.
+  const std::string c = "{stress: 5000, max_speed: 0.1}";
+  const std::string y = box_case(300, side_walls(c) + plane("floor", "[0, 0, 0]", "[0, 0, 1]", c) +
+                                    plane("lid", "[0, 0, 0.0205]", "[0, 0, -1]", c),
+                           0.3, "output: {progress: false, vtk: false, stress: {every_steps: 100}}\n", 0.0);
+  auto s = from_yaml(y);
+  TempDir tmp("stress_box");
+  run_into(s, tmp.path);
+  const Csv st = read_csv(tmp.path / "stress.csv");
+  ASSERT_FALSE(st.rows.empty());
+  const auto& last = st.rows.back();
+  ASSERT_EQ(static_cast<std::int64_t>(last[0]), s.scene.clock.step) << "the last step is measured";
+  for (const char* k : {"sxx_Pa", "syy_Pa", "szz_Pa", "pressure_Pa"})
+    EXPECT_NEAR(last[static_cast<std::size_t>(st.col(k))] / 5000, 1.0, 1e-3) << k;
+  for (const char* k : {"sxy_Pa", "sxz_Pa", "syz_Pa"})
+    EXPECT_LT(std::abs(last[static_cast<std::size_t>(st.col(k))]) / 5000, 0.05) << k;
+  // The box's volume and solid fraction, from the walls and the grains.
+  const double lx = wall(s, "x1").point.x() - wall(s, "x0").point.x();
+  const double ly = wall(s, "y1").point.y() - wall(s, "y0").point.y();
+  const double lz = wall(s, "lid").point.z() - wall(s, "floor").point.z();
+  double vs = 0;
+  for (std::size_t i = 0; i < s.scene.particles.n_owned(); ++i) vs += 4.0 / 3.0 * M_PI * std::pow(s.scene.particles.radius[i], 3);
+  EXPECT_NEAR(last[static_cast<std::size_t>(st.col("volume_m3"))] / (lx * ly * lz), 1.0, 1e-9);
+  EXPECT_NEAR(last[static_cast<std::size_t>(st.col("solid_fraction"))] / (vs / (lx * ly * lz)), 1.0, 1e-9);
+  EXPECT_EQ(last[static_cast<std::size_t>(st.col("grains"))], 300);
+}
+
+TEST(StressOutput, TheVerticalStressOfAStaticBedIsTheWeightAboveInEveryBin) {
+  // A bed settled on a floor, periodic in x and y (no wall to hold it up by
+  // friction): through any plane z the grains above push with their weight,
+  // so sigma_zz averaged over a bin [z0, z1] is (g / (A w)) sum_i m_i
+  // |[z0, z1] below z_i| -- with bins of one grain diameter.
+  std::ostringstream y;
+  y << "domain: {min: [0, 0, 0], max: [0.005, 0.005, 0.02], periodic: [true, true, false]}\n"
+       "gravity: [0, 0, -9.81]\n"
+       "materials:\n"
+    << material("grain", 2500, 1e7, 0.3, 0.3, 0.3)
+    << "particles:\n"
+       "  - {name: bed, material: grain, radius: {distribution: uniform, min: 0.0004, max: 0.0005}, count: 300, "
+       "placement: {type: random_fill, region: {min: [0, 0, 0], max: [0.005, 0.005, 0.02]}, seed: 3}}\n"
+       "walls:\n  - {type: plane, name: floor, point: [0, 0, 0], normal: [0, 0, 1], material: grain}\n"
+       "time: {dt: 5.0e-6, end: 0.4}\n"
+       "output: {progress: false, vtk: false, stress: {every_steps: 4000, profile_axis: z, bins: 10, "
+       "region: {min: [0, 0, 0], max: [0.005, 0.005, 0.01]}}}\n";
+  auto s = from_yaml(y.str());
+  TempDir tmp("stress_column");
+  run_into(s, tmp.path);
+  const Csv pr = read_csv(tmp.path / "profile.csv");
+  const auto& p = s.scene.particles;
+  const double A = 0.005 * 0.005, w = 0.001, g = 9.81;
+  int checked = 0;
+  for (const auto& row : pr.rows) {
+    if (static_cast<std::int64_t>(row[0]) != s.scene.clock.step) continue;
+    const int b = static_cast<int>(row[2]);
+    const double z0 = b * w, z1 = z0 + w;
+    double expect = 0;
+    for (std::size_t i = 0; i < p.n_owned(); ++i) expect += p.mass[i] * std::clamp(p.x[i].z() - z0, 0.0, w);
+    expect *= g / (A * w);
+    const double szz = row[static_cast<std::size_t>(pr.col("szz_Pa"))];
+    if (expect > 1)
+      EXPECT_NEAR(szz / expect, 1.0, 0.01) << "bin " << b << " of " << (z0 + z1) / 2 << " m";
+    else
+      EXPECT_LT(std::abs(szz), 0.5) << "bin " << b;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 10);
+}
+
+TEST(StressOutput, TheKineticStressOfAGasIsSumMvvAboutTheBinsMeanVelocity) {
+  // Grains far apart (no contact), no gravity: two interleaved lattices
+  // moving at (+u, 0, w) and (-u, 0, w); the stress is all kinetic. (The
+  // CSV holds 10 significant digits.)
+  std::ostringstream y;
+  y.precision(17);
+  y << "domain: {min: [0, 0, 0], max: [0.02, 0.02, 0.02]}\n"
+       "gravity: [0, 0, 0]\n"
+       "materials:\n"
+    << material("grain", 2500, 1e7, 0.3, 0.5, 0.3)
+    << "particles:\n"
+       "  - {name: a, material: grain, radius: 0.0005, velocity: [0.3, 0, 0.1], "
+       "placement: {type: lattice, spacing: 0.004, region: {min: [0.001, 0.001, 0.001], max: [0.02, 0.02, 0.0195]}}}\n"
+       "  - {name: b, material: grain, radius: 0.0005, velocity: [-0.2, 0, 0.1], "
+       "placement: {type: lattice, spacing: 0.004, region: {min: [0.003, 0.003, 0.003], max: [0.02, 0.02, 0.0195]}}}\n"
+       "time: {dt: 1.0e-5, end: 0.001}\n"
+       "output: {progress: false, vtk: false, stress: {every_steps: 100, profile_axis: z, bins: 4}}\n";
+  auto s = from_yaml(y.str());
+  TempDir tmp("stress_gas");
+  run_into(s, tmp.path);
+  const auto& p = s.scene.particles;
+  const Csv pr = read_csv(tmp.path / "profile.csv"), st = read_csv(tmp.path / "stress.csv");
+  const double V = 0.02 * 0.02 * 0.02, Vb = V / 4;
+  std::vector<double> m(4, 0), mu(4, 0), kxx(4, 0);
+  for (std::size_t i = 0; i < p.n_owned(); ++i) {
+    const int b = static_cast<int>(p.x[i].z() / 0.005);
+    m[b] += p.mass[i], mu[b] += p.mass[i] * p.v[i].x();
+  }
+  double total_xx = 0;
+  for (std::size_t i = 0; i < p.n_owned(); ++i) {
+    const int b = static_cast<int>(p.x[i].z() / 0.005);
+    const double wx = p.v[i].x() - mu[b] / m[b];
+    kxx[b] += p.mass[i] * wx * wx;
+    total_xx += p.mass[i] * wx * wx;
+  }
+  int rows = 0;
+  for (const auto& row : pr.rows) {
+    if (static_cast<std::int64_t>(row[0]) != s.scene.clock.step) continue;
+    const auto b = static_cast<std::size_t>(row[2]);
+    ASSERT_GT(m[b], 0);
+    EXPECT_NEAR(row[static_cast<std::size_t>(pr.col("sxx_Pa"))], kxx[b] / Vb, 1e-9 * kxx[b] / Vb) << b;
+    EXPECT_NEAR(row[static_cast<std::size_t>(pr.col("kxx_Pa"))], kxx[b] / Vb, 1e-9 * kxx[b] / Vb) << b;
+    EXPECT_NEAR(row[static_cast<std::size_t>(pr.col("vx_mps"))], mu[b] / m[b], 1e-10) << b;
+    EXPECT_NEAR(row[static_cast<std::size_t>(pr.col("kzz_Pa"))], 0.0, 1e-12) << "all move at the same w";
+    EXPECT_NEAR(row[static_cast<std::size_t>(pr.col("kxz_Pa"))], 0.0, 1e-12) << b;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 4);
+  EXPECT_NEAR(st.rows.back()[static_cast<std::size_t>(st.col("kxx_Pa"))], total_xx / V, 1e-9 * total_xx / V)
+      << "the region's kinetic part is the sum of its bins'";
+}
+
+TEST(StressOutput, ErrorsAreLocated) {
+  const std::string base = box_case(10, side_walls() + plane("floor", "[0, 0, 0]", "[0, 0, 1]"), 0.01);
+  std::string e = errors_of(base + "output: {stress: {every_steps: 10, bins: 4}}\n");
+  EXPECT_NE(e.find("output.stress"), std::string::npos) << e;
+  EXPECT_NE(e.find("needs both profile_axis and bins"), std::string::npos) << e;
+  e = errors_of(base + "output: {stress: {region: {min: [0, 0, 0.01], max: [0.01, 0.01, 0]}}}\n");
+  EXPECT_NE(e.find("max must exceed min"), std::string::npos) << e;
+  e = errors_of(base + "output: {stress: {profile_axis: w, bins: 3}}\n");
+  EXPECT_NE(e.find("profile_axis"), std::string::npos) << e;
+  std::string ark = base + "output: {stress: {every_steps: 10}}\n";
+  ark.replace(ark.find("time: {"), 7, "time: {integrator: arkode, ");
+  e = errors_of(ark);
+  EXPECT_NE(e.find("output.stress measures with the Verlet integrator"), std::string::npos) << e;
+  EXPECT_NE(e.find("case.yaml:"), std::string::npos) << e;
 }
 
 }  // namespace

@@ -1,0 +1,107 @@
+#pragma once
+// The contact part of the stress tensor, gathered by the force stages on the
+// steps it is measured (output.stress, io/output/stress_output.hpp); null on
+// every other step, so that the force stages do nothing for it then.
+//
+// Love–Weber: sigma = (1/V) sum_c w_c sym(F_c (x) b_c), compressive > 0, with
+// F_c the force on body i of the contact and b_c its branch vector: x_i - x_j
+// between two bodies (the centres: exact for rigid bodies in equilibrium,
+// whatever their shape), x_i - x_c from a wall's contact point. w_c is the
+// fraction of the branch inside the region (of a bin along `axis`): the bin's
+// stress is then the method-of-planes stress averaged over the bin, exact in
+// a static bed (sigma_zz(z) A = the weight of the grains above z) however
+// thin the bins. Along periodic dimensions the parts of a branch outside the
+// domain count at their images inside it. A pair with a ghost, which both
+// ranks (or both periodic images) compute, counts half each time. Each thread
+// adds into its own rows; the output sums them, and the ranks' sums.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "contact/contact_geometry.hpp"
+
+namespace grains::sim {
+
+using contact::Vec3;
+
+struct StressProbe {
+  using Sym = std::array<double, 6>;  // xx, yy, zz, xy, xz, yz
+  Vec3 lo{0, 0, 0}, hi{0, 0, 0};      // the region
+  Vec3 period_lo{0, 0, 0}, period{0, 0, 0};  // the domain along periodic dimensions (period 0: not periodic)
+  int axis = 2;
+  int bins = 0;  // profile bins along axis over [lo, hi] (0: none)
+  /// Per thread: the region's sum, then one per bin.
+  std::vector<std::vector<Sym>> rows;
+
+  void reset(int threads) {
+    rows.assign(static_cast<std::size_t>(threads), std::vector<Sym>(static_cast<std::size_t>(1 + bins), Sym{}));
+  }
+
+  /// The contact of force F on body i at x_i with branch b (from x_i - b to x_i).
+  void add(int thread, const Vec3& xi, const Vec3& F, const Vec3& b) {
+    const Sym c{F.x() * b.x(), F.y() * b.y(), F.z() * b.z(), 0.5 * (F.x() * b.y() + F.y() * b.x()),
+                0.5 * (F.x() * b.z() + F.z() * b.x()), 0.5 * (F.y() * b.z() + F.z() * b.y())};
+    const Vec3 a = xi - b;
+    // The images of the branch that reach the domain along periodic dimensions.
+    int k0[3] = {0, 0, 0}, k1[3] = {0, 0, 0};
+    for (int d = 0; d < 3; ++d)
+      if (period[d] > 0) {
+        k0[d] = static_cast<int>(std::floor((std::min(a[d], xi[d]) - period_lo[d]) / period[d]));
+        k1[d] = static_cast<int>(std::floor((std::max(a[d], xi[d]) - period_lo[d]) / period[d]));
+      }
+    auto& r = rows[static_cast<std::size_t>(thread)];
+    for (int kx = k0[0]; kx <= k1[0]; ++kx)
+      for (int ky = k0[1]; ky <= k1[1]; ++ky)
+        for (int kz = k0[2]; kz <= k1[2]; ++kz) {
+          const Vec3 s = a - Vec3(kx * period[0], ky * period[1], kz * period[2]);
+          add_segment(r, c, s, b);
+        }
+  }
+
+  /// A pair of particles i, j of `p` (positions x): force F on i from j. A
+  /// pair with a ghost is computed on both ranks (or, periodic, for both
+  /// images): half from each.
+  template <class Store>
+  void add_pair(int thread, const Store& p, std::size_t i, std::size_t j, const Vec3& F) {
+    const bool ghost = i >= p.n_owned() || j >= p.n_owned();
+    add(thread, p.x[i], ghost ? Vec3(0.5 * F) : F, p.x[i] - p.x[j]);
+  }
+
+ private:
+  static void accumulate(Sym& to, const Sym& c, double w) {
+    for (std::size_t k = 0; k < 6; ++k) to[k] += w * c[k];
+  }
+  // The segment a + t b, t in [0, 1]: its fraction in the region, and in each bin.
+  void add_segment(std::vector<Sym>& r, const Sym& c, const Vec3& a, const Vec3& b) const {
+    double t0 = 0, t1 = 1;
+    for (int d = 0; d < 3; ++d) {
+      if (b[d] == 0) {
+        if (!(a[d] >= lo[d] && a[d] < hi[d])) return;
+        continue;
+      }
+      double u0 = (lo[d] - a[d]) / b[d], u1 = (hi[d] - a[d]) / b[d];
+      if (u0 > u1) std::swap(u0, u1);
+      t0 = std::max(t0, u0), t1 = std::min(t1, u1);
+    }
+    if (!(t1 > t0)) return;
+    accumulate(r[0], c, t1 - t0);
+    if (bins == 0) return;
+    const double w = (hi[axis] - lo[axis]) / bins;
+    const auto bin_of = [&](double z) { return std::clamp(static_cast<int>((z - lo[axis]) / w), 0, bins - 1); };
+    if (b[axis] == 0) {
+      accumulate(r[static_cast<std::size_t>(1 + bin_of(a[axis]))], c, t1 - t0);
+      return;
+    }
+    const double z0 = a[axis] + t0 * b[axis], z1 = a[axis] + t1 * b[axis];
+    const int first = bin_of(std::min(z0, z1)), last = bin_of(std::max(z0, z1));
+    for (int k = first; k <= last; ++k) {
+      double u0 = (lo[axis] + k * w - a[axis]) / b[axis], u1 = (lo[axis] + (k + 1) * w - a[axis]) / b[axis];
+      if (u0 > u1) std::swap(u0, u1);
+      const double f = std::min(t1, u1) - std::max(t0, u0);
+      if (f > 0) accumulate(r[static_cast<std::size_t>(1 + k)], c, f);
+    }
+  }
+};
+
+}  // namespace grains::sim
