@@ -150,6 +150,33 @@ class CaseParser {
     if (n["min"] && n["max"] && ((dom.hi - dom.lo).array() <= 0).any())
       v_.error(n["max"], "domain", "max must exceed min in every coordinate");
     dom.periodic = v_.bool3(n, d, "periodic", "domain");
+    if (const YAML::Node sh = n["shear"]) {
+      const auto& sd = doc("domain.shear");
+      const std::string ctx = "domain.shear";
+      if (!v_.check_map(sh, sd, ctx)) return;
+      auto axis = [&](const char* k) {
+        const std::string a = v_.string(sh, sd, k, ctx, "");
+        return a == "x" ? 0 : a == "y" ? 1 : a == "z" ? 2 : -1;
+      };
+      const int f = axis("flow"), g = axis("gradient");
+      dom.shear.rate = v_.number(sh, sd, "rate", ctx, 0);
+      if (sh["rate"] && dom.shear.rate == 0) v_.error(sh["rate"], ctx, "rate must not be 0 (no shear: leave shear out)");
+      c_.scene.shear_profile = v_.boolean(sh, sd, "initial_profile", ctx, true);
+      c_.scene.shear_where = v_.where(sh);
+      if (f < 0 || g < 0) return;
+      if (f == g) {
+        v_.error(sh["gradient"], ctx, "flow and gradient must be different axes");
+        return;
+      }
+      for (const int a : {f, g})
+        if (!dom.periodic[a]) {
+          v_.error(sh[a == f ? "flow" : "gradient"], ctx,
+                   std::string("a shear rate needs periodic ") + "xyz"[a] + " (the " + (a == f ? "flow" : "gradient") +
+                       " axis): the domain is not periodic along it; set domain.periodic");
+          return;
+        }
+      dom.shear.flow = f, dom.shear.gradient = g;
+    }
   }
 
   void parse_parallel(const YAML::Node& n) {

@@ -134,6 +134,9 @@ void StressOutput::arm(sim::Scene& s) {
     probe_.period_lo[d] = s.domain.lo[d];
     probe_.period[d] = s.domain.periodic[d] ? s.domain.hi[d] - s.domain.lo[d] : 0.0;
   }
+  probe_.shear_flow = s.domain.shear.flow;
+  probe_.shear_gradient = s.domain.shear.gradient;
+  if (s.domain.shear.on()) probe_.shear_offset = s.domain.shear_offset(s.clock.time + s.clock.dt);  // the measured step's
   probe_.axis = std::max(cfg_.axis, 0);
   probe_.bins = cfg_.bins;
   probe_.reset(omp_get_max_threads());
@@ -156,11 +159,11 @@ void StressOutput::measure(sim::Scene& s) {
   // Where each grain is: its bin (or -1 outside the region across the axis)
   // and whether its centre is in the region.
   std::vector<int> bin(n, -2);
-  std::vector<sim::Vec3> x(n);
+  // Positions (and velocities, across a sheared face) brought into the domain.
+  std::vector<sim::Vec3> x(n), vel(p.v.begin(), p.v.begin() + static_cast<std::ptrdiff_t>(n));
   for (std::size_t i = 0; i < n; ++i) {
     sim::Vec3 c = p.x[i];
-    for (int d = 0; d < 3; ++d)
-      if (pr.period[d] > 0) c[d] -= pr.period[d] * std::floor((c[d] - pr.period_lo[d]) / pr.period[d]);
+    s.domain.wrap(c, vel[i], s.clock.time);
     x[i] = c;
     bool across = true;  // inside the region along the other axes
     for (int d = 0; d < 3; ++d)
@@ -186,7 +189,7 @@ void StressOutput::measure(sim::Scene& s) {
   auto add_to = [&](std::size_t g, std::size_t i, double vol) {
     double* q = grp + 6 * g;
     q[0] += p.mass[i];
-    for (int d = 0; d < 3; ++d) q[1 + d] += p.mass[i] * p.v[i][d];
+    for (int d = 0; d < 3; ++d) q[1 + d] += p.mass[i] * vel[i][d];
     q[4] += 1;
     q[5] += vol;
   };
@@ -195,11 +198,17 @@ void StressOutput::measure(sim::Scene& s) {
     const double r = radius_of(i);
     if (bin[i] >= 0) add_to(0, i, 4.0 / 3.0 * M_PI * r * r * r);
     if (pr.bins == 0) continue;
-    // The bins its sphere reaches get its slab volumes; the one of its centre its mass.
-    const int b0 = std::max(0, static_cast<int>(std::floor((x[i][ax] - r - pr.lo[ax]) / width)));
-    const int b1 = std::min(pr.bins - 1, static_cast<int>(std::floor((x[i][ax] + r - pr.lo[ax]) / width)));
-    for (int b = b0; b <= b1; ++b)
-      grp[6 * (1 + b) + 5] += slab_volume(x[i][ax], r, pr.lo[ax] + b * width, pr.lo[ax] + (b + 1) * width);
+    // The bins its sphere reaches get its slab volumes (along a periodic
+    // axis its images' too); the one of its centre its mass.
+    const double L = pr.period[ax];
+    for (const double shift : {0.0, L, -L}) {
+      if (shift != 0 && !(L > 0)) break;
+      const double c = x[i][ax] + shift;
+      const int b0 = std::max(0, static_cast<int>(std::floor((c - r - pr.lo[ax]) / width)));
+      const int b1 = std::min(pr.bins - 1, static_cast<int>(std::floor((c + r - pr.lo[ax]) / width)));
+      for (int b = b0; b <= b1; ++b)
+        grp[6 * (1 + b) + 5] += slab_volume(c, r, pr.lo[ax] + b * width, pr.lo[ax] + (b + 1) * width);
+    }
     if (bin[i] >= 0) {
       add_to(static_cast<std::size_t>(1 + bin[i]), i, 0.0);
     }
@@ -218,7 +227,7 @@ void StressOutput::measure(sim::Scene& s) {
   for (std::size_t i = 0; i < n; ++i) {
     if (bin[i] < 0) continue;
     const std::size_t g = pr.bins > 0 ? static_cast<std::size_t>(1 + bin[i]) : 0;
-    const sim::Vec3 w = p.v[i] - u[g];
+    const sim::Vec3 w = vel[i] - u[g];
     if (pr.bins > 0) add_kin(g, w, p.mass[i]);
     add_kin(0, w, p.mass[i]);  // the region: the sum of its bins' fluctuations
   }

@@ -8,7 +8,7 @@
 // on (read back from the files, so a restarted run's means cover the whole
 // run): summary.json and OUTDIR/profile_mean.csv.
 //
-// Contact part: Love–Weber (sim/scene/stress_probe.hpp), gathered by the
+// Contact part: Love–Weber (sim/state/stress_probe.hpp), gathered by the
 // force stages on the measured step only. Kinetic part: sum m (v - u)(v - u)
 // / V by centre, u the mass-weighted mean velocity of the grain's bin (of the
 // region without a profile). Solid fraction: per bin, the exact volume of

@@ -69,7 +69,7 @@ fs::path CheckpointStage::save_to(sim::Scene& s, const fs::path& dir) {
   // the checkpoint's step, so that both continue from the same state (a
   // wrap rounds: x + L is not exact). The cuts in force after it are saved.
   if (updated_step_ != s.clock.step) {  // once per step (a fallback folder saves the same state)
-    sim::NeighborStage::full_update(s, sort_);
+    sim::NeighborStage::full_update(s, sort_, true);
     updated_step_ = s.clock.step;
   }
   std::string err;

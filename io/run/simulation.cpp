@@ -222,8 +222,10 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
     if (s.scene.exchange) {
       // Every rank read the whole state: keep this rank's part and rebuild;
       // the histories follow their pairs by global ids.
+      const auto builds = s.scene.neighbors.stats().builds;
       s.scene.exchange->distribute_initial(s.scene, &x.cuts);
-      sim::NeighborStage::full_update(s.scene, s.c.scene.sort_particles);
+      sim::NeighborStage::full_update(s.scene, s.c.scene.sort_particles, true);
+      s.scene.neighbors.keep_build_count(builds);  // (the saving run counted this update)
     }
     if (x.case_effective != effective_case(s.c) && talk)
       *opt.log << "note: the case differs from the one " << opt.restart.string()

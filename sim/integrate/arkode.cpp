@@ -283,7 +283,7 @@ void ErkDriver::unpack(const double* y) {
     place_clump_balls(p, b, true);
   }
   // Periodic images follow their particles.
-  if (scene_->exchange) scene_->exchange->update_ghosts(p);
+  if (scene_->exchange) scene_->exchange->update_ghosts(p, scene_->clock.time);
   if (H_ == 0) return;
   // The springs of this state; rates are written by the laws of touching
   // contacts only, so they start at zero. Every entry may touch: a separated

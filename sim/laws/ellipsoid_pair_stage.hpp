@@ -210,7 +210,7 @@ class ShapePairContactStage final : public Stage {
           [&](std::uint32_t k) { e_.zero<true>(k); });
     }
     gather_entry_forces<true>(s.particles, nl, e_);
-    if (s.stress_probe) probe_entries(s, nl, e_.f);
+    if (s.stress_probe) probe_entries(*s.stress_probe, s.particles, nl, e_.f);
   }
 
   EntryForces e_;

@@ -117,7 +117,7 @@ class PairContactStage final : public Stage {
       }
     }
     gather_entry_forces<Rot>(s.particles, nl, e_);
-    if (s.stress_probe) probe_entries(s, nl, e_.f);
+    if (s.stress_probe) probe_entries(*s.stress_probe, s.particles, nl, e_.f);
   }
 
   EntryForces e_;

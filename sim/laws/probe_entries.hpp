@@ -1,20 +1,21 @@
 #pragma once
 // The contacts of a pair stage's list entries, into the stress probe
-// (sim/scene/stress_probe.hpp), after a deferred force evaluation: entry k's
+// (sim/state/stress_probe.hpp), after a deferred force evaluation: entry k's
 // force on its row particle, zero for entries not in contact. Serial: only on
 // the steps the stress is measured.
 #include <vector>
 
-#include "sim/scene/scene.hpp"
+#include "sim/neighbor/neighbor_list.hpp"
+#include "sim/state/stress_probe.hpp"
 
 namespace grains::sim {
 
-inline void probe_entries(Scene& s, const NeighborList& nl, const std::vector<Vec3>& f) {
-  const ParticleStore& p = s.particles;
+inline void probe_entries(StressProbe& probe, const ParticleStore& p, const NeighborList& nl,
+                          const std::vector<Vec3>& f) {
   const std::size_t rows = nl.row_start.empty() ? 0 : nl.row_start.size() - 1;
   for (std::size_t i = 0; i < rows; ++i)
     for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k)
-      if (f[k].squaredNorm() > 0) s.stress_probe->add_pair(0, p, i, nl.partner[k], f[k]);
+      if (f[k].squaredNorm() > 0) probe.add_pair(0, p, i, nl.partner[k], f[k]);
 }
 
 }  // namespace grains::sim

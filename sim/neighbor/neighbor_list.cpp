@@ -70,7 +70,7 @@ bool NeighborList::needs_rebuild(const ParticleStore& p, const Walls& walls, dou
   double m2 = 0;
   for (std::size_t i = 0; i < n; ++i) m2 = std::max(m2, (p.x[i] - x_build_[i]).squaredNorm());
   const double m = std::sqrt(m2) + growth_;
-  return 2 * m > skin_ || m + walls.max_displacement(time - build_time_) > skin_;
+  return 2 * m + image_speed_ * (time - build_time_) > skin_ || m + walls.max_displacement(time - build_time_) > skin_;
 }
 
 void NeighborList::sort_by_cell(ParticleStore& p, const Vec3& lo, const Vec3& hi) const {

@@ -40,6 +40,9 @@ class NeighborList {
   /// left out, a contact with one has m* = the other's mass, and frozen
   /// grains are left out of the walls' near lists. Off: none of this runs.
   void set_frozen(bool on) { frozen_ = on; }
+  /// Lees–Edwards boundaries: the speed of the sheared images relative to
+  /// the cell, which closes the skin between a grain and an image too.
+  void set_image_speed(double u) { image_speed_ = u; }
   bool frozen() const { return frozen_; }
   double reach() const { return reach_; }
   int history_size() const { return history_size_; }
@@ -118,6 +121,9 @@ class NeighborList {
   std::vector<NearItems> wall_items;
 
   const Stats& stats() const { return stats_; }
+  /// A continuation's first full update repeats the one the uninterrupted
+  /// run made before saving: it keeps the saved count.
+  void keep_build_count(long builds) { stats_.builds = builds; }
 
   /// What a build leaves besides the rows: the positions and time of the
   /// build (the displacement trigger), the ids of the rows (to carry history
@@ -148,6 +154,7 @@ class NeighborList {
   bool with_gather_ = false;
   bool frozen_ = false;
   double growth_ = 0;  // largest radius growth since the build
+  double image_speed_ = 0;
   std::vector<Vec3> x_build_;
   // Global ids of all particles (owned and ghosts) at the last build: the
   // keys that carry history to the next build.

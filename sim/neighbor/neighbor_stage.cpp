@@ -47,14 +47,15 @@ void NeighborStage::run(Scene& s) {
   auto& p = s.particles;
   bool rebuild = s.neighbors.needs_rebuild(p, s.walls, s.clock.time);
   if (s.exchange) rebuild = s.exchange->comm().any(rebuild);  // all ranks together
+  const double now = s.clock.time + s.clock.dt;  // the drift's state (the clock moves on after the kick)
   if (!rebuild) {
-    if (s.exchange) s.exchange->update_ghosts(p);
+    if (s.exchange) s.exchange->update_ghosts(p, now);
     return;
   }
-  full_update(s, sort_);
+  full_update(s, sort_, now);
 }
 
-void NeighborStage::full_update(Scene& s, bool sort) {
+void NeighborStage::full_update(Scene& s, bool sort, double time, bool canonical) {
   auto& p = s.particles;
   // The work estimate for the load balance needs the old list with its ghosts.
   std::vector<double> work;
@@ -65,9 +66,15 @@ void NeighborStage::full_update(Scene& s, bool sort) {
     s.neighbors.build(p, s.walls, s.domain.lo, s.domain.hi, s.clock.time, sort);
     return;
   }
-  s.exchange->migrate(s, &work);
+  s.exchange->migrate(s, &work, time);
+  if (canonical) {
+    std::vector<std::size_t> order(p.n_owned());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
+    p.permute(order);
+  }
   if (sort) s.neighbors.sort_by_cell(p, s.domain.lo, s.domain.hi);
-  s.exchange->build_ghosts(p);
+  s.exchange->build_ghosts(p, time);
   s.neighbors.build(p, s.walls, s.domain.lo, s.domain.hi, s.clock.time, false);
 }
 

@@ -15,7 +15,14 @@ class NeighborStage final : public Stage {
   void run(Scene& s) override;
   /// Lost particles out, migration, ghosts and lists, whatever the trigger
   /// says (also used at start and after a restart).
-  static void full_update(Scene& s, bool sort);
+  /// Everything rebuilt for the state at `time` (inside a step the clock's
+  /// time + dt: the clock moves on after the kick).
+  /// With `canonical` (a checkpoint's step, and a continuation's first
+  /// update) the grains are put in id order before the cell sort, so that
+  /// both hold them in the same order whatever order they came in (sums over
+  /// grains, frames and CSV series then round alike).
+  static void full_update(Scene& s, bool sort, double time, bool canonical = false);
+  static void full_update(Scene& s, bool sort, bool canonical = false) { full_update(s, sort, s.clock.time, canonical); }
 
  private:
   bool sort_;

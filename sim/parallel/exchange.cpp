@@ -37,7 +37,7 @@ Exchange::Exchange(const Comm& comm, const Domain& domain, double cutoff, Exchan
                                " m (largest diameter + skin) so that a pair meets only one image");
 }
 
-void Exchange::wrap(Scene& s) {
+void Exchange::wrap(Scene& s, double time) {
   if (!domain_.any_periodic()) return;
   auto& p = s.particles;
   auto& b = s.bodies;
@@ -47,6 +47,8 @@ void Exchange::wrap(Scene& s) {
   for (std::size_t i = 0; i < p.n_owned(); ++i) {
     if (clumps && p.body[i] >= 0)
       p.x[i] += body_shift[static_cast<std::size_t>(b.index_of(p.body[i]))];
+    else if (domain_.shear.on())  // across the sheared face: displaced and slowed (or sped up)
+      domain_.wrap(p.x[i], p.v[i], time);
     else
       domain_.wrap(p.x[i]);
   }
@@ -55,7 +57,7 @@ void Exchange::wrap(Scene& s) {
 void Exchange::distribute_initial(Scene& s, const std::array<std::vector<double>, 3>* saved_cuts) {
   auto& p = s.particles;
   auto& b = s.bodies;
-  wrap(s);
+  wrap(s, s.clock.time);
   if (!comm_.parallel()) return;
   keep_cuts_once_ = saved_cuts && dec_.set_cuts(*saved_cuts);
   // Every rank holds all particles: balance on them (a one-rank view, no
@@ -107,11 +109,11 @@ std::vector<double> Exchange::work_weights(const ParticleStore& p, const Neighbo
   return w;
 }
 
-void Exchange::migrate(Scene& s, const std::vector<double>* work) {
+void Exchange::migrate(Scene& s, const std::vector<double>* work, double time) {
   auto& p = s.particles;
   auto& b = s.bodies;
   ++stats_.full_updates;
-  wrap(s);
+  wrap(s, time);
   if (!comm_.parallel()) return;
   const double* w = work && work->size() == p.n_owned() ? work->data() : nullptr;
   double load = static_cast<double>(p.n_owned());
@@ -204,13 +206,29 @@ void Exchange::migrate(Scene& s, const std::vector<double>* work) {
   b.rebuild_index();
 }
 
-void Exchange::build_ghosts(ParticleStore& p) {
+double Exchange::sheared(const Swap& sw, double xf, signed char wrap, double time) const {
+  const int f = domain_.shear.flow;
+  const double Lf = domain_.hi[f] - domain_.lo[f];
+  // The offset as U t less the whole periods taken off at the build: the
+  // same bits whenever the list was built within the same period.
+  const double offset = domain_.shear_speed() * time - sw.offset_periods * Lf;
+  return xf + sw.shear_side * offset + wrap * Lf;
+}
+
+void Exchange::build_ghosts(ParticleStore& p, double time) {
   swaps_.clear();
   const int me = comm_.rank();
   const Vec3 lo = dec_.lo(me), hi = dec_.hi(me);
   const std::size_t rec = p.record_bytes();
   int tag = 100;
-  for (int d = 0; d < 3; ++d) {
+  // With Lees–Edwards boundaries the gradient's images first, so that the
+  // images displaced along the flow get their own images across the flow.
+  std::array<int, 3> order{0, 1, 2};
+  if (domain_.shear.on()) {
+    const int g = domain_.shear.gradient;
+    order = {g, g == 0 ? 1 : 0, g == 2 ? 1 : 2};
+  }
+  for (const int d : order) {
     if (dec_.dims()[d] == 1 && !domain_.periodic[d]) continue;
     const std::size_t n_sel = p.size();
     const double L = domain_.hi[d] - domain_.lo[d];
@@ -220,6 +238,11 @@ void Exchange::build_ghosts(ParticleStore& p) {
       sw.dest = dec_.neighbor(me, d, dir, wd);
       sw.src = dec_.neighbor(me, d, -dir, ws);
       if (ws) sw.recv_shift[d] = -dir * L;
+      if (ws && domain_.shear.on() && d == domain_.shear.gradient) {
+        sw.shear_side = -dir;
+        const int f = domain_.shear.flow;
+        sw.offset_periods = std::floor(domain_.shear_speed() * time / (domain_.hi[f] - domain_.lo[f]));
+      }
       sbuf_.clear();
       if (sw.dest >= 0)
         for (std::size_t i = 0; i < n_sel; ++i) {
@@ -234,15 +257,30 @@ void Exchange::build_ghosts(ParticleStore& p) {
       sw.recv_start = p.size();
       sw.recv_count = rbuf_.size() / rec;
       for (std::size_t k = 0; k < sw.recv_count; ++k) p.unpack_ghost(rbuf_.data() + k * rec, sw.recv_shift);
+      if (sw.shear_side != 0) {
+        // Displaced along the flow (into the cell's range there: the rank
+        // holds the whole flow axis) and moving with the image.
+        const int f = domain_.shear.flow;
+        const double Lf = domain_.hi[f] - domain_.lo[f];
+        sw.flow_wrap.resize(sw.recv_count);
+        for (std::size_t k = 0; k < sw.recv_count; ++k) {
+          const std::size_t g = sw.recv_start + k;
+          const double xf = sheared(sw, p.x[g][f], 0, time);
+          sw.flow_wrap[k] = static_cast<signed char>(-std::floor((xf - domain_.lo[f]) / Lf));
+          p.x[g][f] = sheared(sw, p.x[g][f], sw.flow_wrap[k], time);
+          p.v[g][f] += sw.shear_side * domain_.shear_speed();
+        }
+      }
       swaps_.push_back(std::move(sw));
     }
   }
   stats_.ghosts = p.n_ghost();
 }
 
-void Exchange::update_ghosts(ParticleStore& p) {
+void Exchange::update_ghosts(ParticleStore& p, double time) {
   const std::size_t kb = p.kinematic_bytes();
   int tag = 100;
+  const int f = domain_.shear.flow;
   for (const auto& sw : swaps_) {
     sbuf_.clear();
     for (const auto i : sw.send) p.pack_kinematics(i, Vec3::Zero(), sbuf_);
@@ -255,6 +293,10 @@ void Exchange::update_ghosts(ParticleStore& p) {
       const std::size_t g = sw.recv_start + k;
       q += p.unpack_kinematics(g, q);
       if (shift) p.x[g] += sw.recv_shift;
+      if (sw.shear_side != 0) {
+        p.x[g][f] = sheared(sw, p.x[g][f], sw.flow_wrap[k], time);
+        p.v[g][f] += sw.shear_side * domain_.shear_speed();
+      }
     }
   }
 }

@@ -62,7 +62,9 @@ class Exchange {
   /// particles and bodies (with contact histories) to their owners. No
   /// ghosts may be present. `work`: estimated cost of each owned particle
   /// (work_weights()), or null to count particles.
-  void migrate(Scene& s, const std::vector<double>* work = nullptr);
+  void migrate(Scene& s, const std::vector<double>* work = nullptr) { migrate(s, work, s.clock.time); }
+  /// The same for a state at `time` (inside a step: the clock's time + dt).
+  void migrate(Scene& s, const std::vector<double>* work, double time);
   /// Estimated cost per step of each owned particle from the last list:
   /// one unit for the particle's own updates plus one per list entry it
   /// takes part in (half of an entry between two owned particles, a whole
@@ -70,10 +72,12 @@ class Exchange {
   /// 10k pour: a list entry costs about as much as a particle's integration
   /// and wall checks (bench/RESULTS.md). Call before ghosts are cleared.
   static std::vector<double> work_weights(const ParticleStore& p, const NeighborList& list);
-  /// Builds the ghosts and remembers the send lists.
-  void build_ghosts(ParticleStore& p);
-  /// Refreshes the ghosts' kinematics along the send lists.
-  void update_ghosts(ParticleStore& p);
+  /// Builds the ghosts at time t and remembers the send lists (with
+  /// Lees–Edwards boundaries the gradient's images first, displaced along
+  /// the flow and moving relative to the cell).
+  void build_ghosts(ParticleStore& p, double time);
+  /// Refreshes the ghosts' kinematics along the send lists, at time t.
+  void update_ghosts(ParticleStore& p, double time);
 
  private:
   struct Swap {
@@ -81,8 +85,17 @@ class Exchange {
     Vec3 recv_shift{0, 0, 0};
     std::vector<std::uint32_t> send;
     std::size_t recv_start = 0, recv_count = 0;
+    // Across a sheared face (Lees–Edwards): the side of the image (+1 above,
+    // -1 below), the whole periods of the offset taken off at the build, and
+    // each ghost's wrap along the flow then (in periods).
+    int shear_side = 0;
+    double offset_periods = 0;
+    std::vector<signed char> flow_wrap;
   };
-  void wrap(Scene& s);
+  /// The position along the flow of a ghost across the sheared face, from
+  /// its source's x_f: continuous between builds.
+  double sheared(const Swap& sw, double xf, signed char wrap, double time) const;
+  void wrap(Scene& s, double time);
   const Comm& comm_;
   Domain domain_;
   Decomposition dec_;

@@ -349,6 +349,25 @@ Scene build_scene(SceneConfig& c) {
     }
   });
   setup_wall_controls(s, c.integrator == Integrator::Arkode, c.integrator_where);
+  if (s.domain.shear.on()) {
+    if (c.integrator == Integrator::Arkode)
+      throw SetupError(c.shear_where + ": domain.shear (Lees-Edwards) moves its images by the Verlet step; use "
+                       "time.integrator: verlet (" + c.integrator_where + ")");
+    if (need.clumps)
+      throw SetupError(c.shear_where + ": domain.shear (Lees-Edwards) does not take clumps yet (a body crossing the "
+                       "sheared face would have to carry its balls' velocities)");
+    if (c.parallel.dims[s.domain.shear.flow] > 1)
+      throw SetupError(c.parallel.where + ": with domain.shear the ranks may not split the flow axis " +
+                       std::string(1, "xyz"[s.domain.shear.flow]) + " (its images are displaced along it): give 1 there");
+    // On the mean flow from the start (frozen grains keep their set's velocity).
+    if (c.shear_profile) {
+      const int f = s.domain.shear.flow, g = s.domain.shear.gradient;
+      const double yc = 0.5 * (s.domain.lo[g] + s.domain.hi[g]);
+      auto& p = s.particles;
+      for (std::size_t i = 0; i < p.n_owned(); ++i)
+        if (p.inv_mass[i] > 0) p.v[i][f] += s.domain.shear.rate * (p.x[i][g] - yc);
+    }
+  }
   double rmax = 0;
   for (const auto r : s.particles.radius) rmax = std::max(rmax, r);
   // Grains inserted later: their largest sphere or ellipsoid radius, or clump ball.
@@ -364,6 +383,7 @@ Scene build_scene(SceneConfig& c) {
   // Ellipsoid scenes keep the PW85 lambda of each pair after the law's history.
   s.neighbors.configure(need.history_size + (need.ellipsoids ? 1 : 0), c.skin * 2 * rmax);
   s.neighbors.set_frozen(c.has_frozen());
+  s.neighbors.set_image_speed(std::abs(s.domain.shear_speed()));
   // Contacts that hold beyond touching (JKR): the lists reach the largest
   // pull-off separation (R* is at most the largest radius, against a wall).
   const double grow = c.growth.enabled ? c.growth.max_scale : 1.0;
@@ -403,6 +423,7 @@ void setup_parallel(Scene& s, const SceneConfig& c, double rmax) {
   const double cut = 2 * rmax * grow + s.neighbors.skin() + extent + s.neighbors.reach();
   ExchangeOptions opt;
   opt.dims = c.parallel.dims;
+  if (s.domain.shear.on()) opt.dims[s.domain.shear.flow] = 1;  // images displaced along the flow: one rank holds it
   opt.balance_threshold = c.parallel.balance_threshold;
   try {
     s.exchange = std::make_shared<Exchange>(comm, s.domain, cut, opt);

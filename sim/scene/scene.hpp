@@ -11,7 +11,7 @@
 #include "sim/neighbor/neighbor_list.hpp"
 #include "sim/state/body_store.hpp"
 #include "sim/state/particle_store.hpp"
-#include "sim/scene/stress_probe.hpp"
+#include "sim/state/stress_probe.hpp"
 #include "sim/walls/walls.hpp"
 
 namespace grains::sim {
@@ -41,6 +41,44 @@ struct Domain {
     }
     x += s;
     return s;
+  }
+
+  /// Lees–Edwards boundaries (domain.shear): steady simple shear at `rate`,
+  /// the mean flow along `flow` growing along `gradient`, both periodic. The
+  /// image of the cell across the gradient's upper face is displaced along
+  /// the flow by offset(t) = rate L_g t and moves at speed() = rate L_g
+  /// relative to it; a grain leaving through that face comes back through
+  /// the lower one displaced by -offset and slowed by speed(), and the other
+  /// way round.
+  struct Shear {
+    int flow = -1, gradient = -1;
+    double rate = 0;  // 1/s
+    bool on() const { return flow >= 0; }
+  } shear;
+  double shear_speed() const {
+    return shear.on() ? shear.rate * (hi[shear.gradient] - lo[shear.gradient]) : 0.0;
+  }
+  /// The upper image's displacement along the flow at time t, in [0, L_flow).
+  double shear_offset(double t) const {
+    const double L = hi[shear.flow] - lo[shear.flow];
+    const double d = std::fmod(shear_speed() * t, L);
+    return d < 0 ? d + L : d;
+  }
+  /// wrap() for a grain with velocity v at time t: across the sheared face
+  /// first (its position along the flow and its velocity change), then along
+  /// every periodic dimension.
+  void wrap(Vec3& x, Vec3& v, double t) const {
+    if (shear.on()) {
+      const int g = shear.gradient, f = shear.flow;
+      const double L = hi[g] - lo[g];
+      const double k = std::floor((x[g] - lo[g]) / L);  // faces crossed upwards (usually -1, 0, 1)
+      if (k != 0) {
+        x[g] -= k * L;
+        x[f] -= k * shear_offset(t);
+        v[f] -= k * shear_speed();
+      }
+    }
+    wrap(x);
   }
 };
 

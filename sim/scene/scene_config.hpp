@@ -21,6 +21,7 @@ struct SetupError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+
 struct SizeDistribution {
   enum class Kind { Fixed, Uniform, Normal, LogNormal, Discrete } kind = Kind::Fixed;
   double radius = 0;             // Fixed
@@ -138,6 +139,9 @@ struct ParallelConfig {
 
 struct SceneConfig {
   Domain domain;
+  /// Lees–Edwards (domain.shear): the grains start on the mean flow; where it is written.
+  bool shear_profile = true;
+  std::string shear_where;
   Vec3 gravity{0, 0, 0};
   std::vector<Material> materials;
   std::vector<PairOverride> overrides;

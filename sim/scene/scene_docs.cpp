@@ -63,7 +63,21 @@ std::vector<EffectDoc> scene_docs() {
                "act across periodic faces (ghost images; the box must be at least twice the largest diameter "
                "plus skin along a periodic axis).",
                {key("min", K::Vec3, "lower corner").req().si("m"), key("max", K::Vec3, "upper corner").req().si("m"),
-                key("periodic", K::Bool3, "periodic axes: true/false for all, or [x, y, z]").def("false")}});
+                key("periodic", K::Bool3, "periodic axes: true/false for all, or [x, y, z]").def("false"),
+                key("shear", K::Map, "Lees-Edwards boundaries for steady simple shear (see domain.shear)")}});
+  d.push_back({"domain.shear", "domain: {..., shear: {rate: 10, flow: x, gradient: y}}",
+               "Lees-Edwards boundaries: steady simple shear at `rate` with no walls. The flow and gradient axes "
+               "must be periodic; the image of the cell across the gradient's upper face is displaced along the "
+               "flow by rate L_g t and moves at rate L_g relative to it, so a grain leaving through that face comes "
+               "back through the lower one displaced and slowed by rate L_g (and the other way round); contacts act "
+               "across it with that relative velocity. The mean flow is u = rate (y - y_centre) along the flow. With "
+               "initial_profile the grains start on it. Under MPI the ranks split the gradient and the third axis, "
+               "never the flow. Verlet only; not with clumps.",
+               {key("rate", K::Number, "shear rate du_flow/dx_gradient (either sign)").req().si("1/s"),
+                key("flow", K::String, "the axis of the mean flow").req().one_of({"x", "y", "z"}),
+                key("gradient", K::String, "the axis the flow varies along").req().one_of({"x", "y", "z"}),
+                key("initial_profile", K::Bool, "add the mean flow rate (y - y_centre) to the grains' velocities at the start")
+                    .def_bool(true)}});
   d.push_back({"force.gravity", "gravity: [gx, gy, gz]", "Uniform gravity, F = m g, applied where forces are cleared each step; absent or zero costs nothing.",
                {key("gravity", K::Vec3, "acceleration").si("m/s^2")}});
   d.push_back({"particles", "particles: [ {...}, ... ]", "A set of particles: spheres, ellipsoids or rigid clumps (see particles.shape).",

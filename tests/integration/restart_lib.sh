@@ -41,10 +41,21 @@ same_as_reference() {
     cmp -s "$f" "$out/frames/$(basename "$f")" || fail "frame $(basename "$f") differs"
   done
   # The series written as CSV (wall loads, stress and profiles, mass, ...):
-  # rows up to each restart kept, the rest written again, the same bytes.
+  # rows up to each restart kept, the rest written again. The same bytes;
+  # or, where a continuation holds its grains in another order (periodic and
+  # MPI scenes: sorted by id, then by cell), sums over grains may round
+  # otherwise: each value then within 1e-12 of its column's largest.
   for f in "$WORK"/ref/*.csv; do
     [ -e "$f" ] || continue
-    cmp -s "$f" "$out/$(basename "$f")" || fail "$(basename "$f") differs"
+    g="$out/$(basename "$f")"
+    cmp -s "$f" "$g" && continue
+    awk -F, '
+      FNR == 1 { next }
+      NR == FNR { for (k = 1; k <= NF; k++) { a[FNR, k] = $k; v = $k < 0 ? -$k : $k; if (v > big[k]) big[k] = v }
+                  rows = FNR; next }
+      { for (k = 1; k <= NF; k++) { d = $k - a[FNR, k]; d = d < 0 ? -d : d; if (d > 1e-12 * big[k]) exit 1 } seen = FNR }
+      END { if (seen != rows) exit 1 }' "$f" "$g" || fail "$(basename "$f") differs"
+    echo "$(basename "$f"): equal to 1e-12 of each column (sums in another order)"
   done
 }
 

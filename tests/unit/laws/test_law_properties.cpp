@@ -19,7 +19,7 @@ namespace {
 Scene two_spheres(std::mt19937_64& rng, double gap_factor, bool swap, int history, const NormalLawChoice& normal) {
   std::uniform_real_distribution<double> u(-1, 1);
   Scene s;
-  s.domain = {Vec3(-1, -1, -1), Vec3(1, 1, 1)};
+  s.domain.lo = Vec3(-1, -1, -1), s.domain.hi = Vec3(1, 1, 1);
   Material m;
   m.name = "m";
   m.density = 2500;
@@ -103,7 +103,7 @@ template <class Law>
 void check_wall_law(const NormalLawChoice& normal) {
   // Zero force beyond contact and a repulsive normal part in contact.
   Scene s;
-  s.domain = {Vec3(-1, -1, -1), Vec3(1, 1, 1)};
+  s.domain.lo = Vec3(-1, -1, -1), s.domain.hi = Vec3(1, 1, 1);
   Material m{"m", 2500, 1e8, 0.3, 0.5, 0.5, 0.1, 0.0};
   s.materials = {m};
   s.pairs = PairTable(s.materials, {}, normal);

@@ -31,6 +31,10 @@ struct StressProbe {
   Vec3 period_lo{0, 0, 0}, period{0, 0, 0};  // the domain along periodic dimensions (period 0: not periodic)
   int axis = 2;
   int bins = 0;  // profile bins along axis over [lo, hi] (0: none)
+  /// Lees–Edwards: an image across the gradient is displaced along the flow
+  /// by the offset then (flow -1: none).
+  int shear_flow = -1, shear_gradient = -1;
+  double shear_offset = 0;
   /// Per thread: the region's sum, then one per bin.
   std::vector<std::vector<Sym>> rows;
 
@@ -42,21 +46,32 @@ struct StressProbe {
   void add(int thread, const Vec3& xi, const Vec3& F, const Vec3& b) {
     const Sym c{F.x() * b.x(), F.y() * b.y(), F.z() * b.z(), 0.5 * (F.x() * b.y() + F.y() * b.x()),
                 0.5 * (F.x() * b.z() + F.z() * b.x()), 0.5 * (F.y() * b.z() + F.z() * b.y())};
-    const Vec3 a = xi - b;
-    // The images of the branch that reach the domain along periodic dimensions.
-    int k0[3] = {0, 0, 0}, k1[3] = {0, 0, 0};
-    for (int d = 0; d < 3; ++d)
-      if (period[d] > 0) {
-        k0[d] = static_cast<int>(std::floor((std::min(a[d], xi[d]) - period_lo[d]) / period[d]));
-        k1[d] = static_cast<int>(std::floor((std::max(a[d], xi[d]) - period_lo[d]) / period[d]));
-      }
+    // The images of the branch that reach the domain along periodic
+    // dimensions, the gradient's first (its images are displaced along the flow).
+    const int g = shear_flow >= 0 ? shear_gradient : 0;
+    const int o1 = g == 0 ? 1 : 0, o2 = g == 2 ? 1 : 2;
     auto& r = rows[static_cast<std::size_t>(thread)];
-    for (int kx = k0[0]; kx <= k1[0]; ++kx)
-      for (int ky = k0[1]; ky <= k1[1]; ++ky)
-        for (int kz = k0[2]; kz <= k1[2]; ++kz) {
-          const Vec3 s = a - Vec3(kx * period[0], ky * period[1], kz * period[2]);
-          add_segment(r, c, s, b);
+    const Vec3 a = xi - b;
+    int kg0, kg1;
+    range(a, b, g, kg0, kg1);
+    for (int kg = kg0; kg <= kg1; ++kg) {
+      Vec3 a1 = a;
+      a1[g] -= kg * period[g];
+      if (shear_flow >= 0) a1[shear_flow] -= kg * shear_offset;
+      int k10, k11;
+      range(a1, b, o1, k10, k11);
+      for (int k1 = k10; k1 <= k11; ++k1) {
+        Vec3 a2 = a1;
+        a2[o1] -= k1 * period[o1];
+        int k20, k21;
+        range(a2, b, o2, k20, k21);
+        for (int k2 = k20; k2 <= k21; ++k2) {
+          Vec3 a3 = a2;
+          a3[o2] -= k2 * period[o2];
+          add_segment(r, c, a3, b);
         }
+      }
+    }
   }
 
   /// A pair of particles i, j of `p` (positions x): force F on i from j. A
@@ -69,6 +84,13 @@ struct StressProbe {
   }
 
  private:
+  // The periods along d the segment a + t b reaches (none when not periodic).
+  void range(const Vec3& a, const Vec3& b, int d, int& k0, int& k1) const {
+    k0 = k1 = 0;
+    if (!(period[d] > 0)) return;
+    k0 = static_cast<int>(std::floor((std::min(a[d], a[d] + b[d]) - period_lo[d]) / period[d]));
+    k1 = static_cast<int>(std::floor((std::max(a[d], a[d] + b[d]) - period_lo[d]) / period[d]));
+  }
   static void accumulate(Sym& to, const Sym& c, double w) {
     for (std::size_t k = 0; k < 6; ++k) to[k] += w * c[k];
   }
