@@ -11,7 +11,9 @@
 namespace grains::io {
 
 /// Opens `file` for writing with its header and the rows (first column: the
-/// step) before `step` from its current content.
+/// step) before `step` from its current content. The kept rows go to a
+/// hidden file first, renamed over `file` (atomic): a run killed meanwhile
+/// leaves the old content whole, not a truncated file.
 inline void reopen_before(std::ofstream& out, const std::filesystem::path& file, const std::string& header,
                           std::int64_t step) {
   std::vector<std::string> keep;
@@ -27,10 +29,22 @@ inline void reopen_before(std::ofstream& out, const std::filesystem::path& file,
       if (std::stoll(line.substr(0, line.find(','))) < step) keep.push_back(line);
     }
   }
-  out.open(file, std::ios::trunc);
-  if (!out) throw std::runtime_error("cannot write '" + file.string() + "'");
   if (keep.empty()) keep.push_back(header);
-  for (const auto& l : keep) out << l << "\n";
+  std::string hidden = file.filename().string();
+  hidden.insert(hidden.begin(), '.');
+  hidden.append(".tmp");
+  const std::filesystem::path tmp = file.parent_path() / hidden;
+  {
+    std::ofstream t(tmp, std::ios::trunc);
+    for (const auto& l : keep) t << l << "\n";
+    t.flush();
+    if (!t) throw std::runtime_error("cannot write '" + tmp.string() + "' (disk full?)");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, file, ec);
+  if (ec) throw std::runtime_error("cannot replace '" + file.string() + "': " + ec.message());
+  out.open(file, std::ios::app);
+  if (!out) throw std::runtime_error("cannot write '" + file.string() + "'");
 }
 
 }  // namespace grains::io
