@@ -76,13 +76,8 @@ void box_region(const sim::Scene& s, sim::Vec3& lo, sim::Vec3& hi) {
   for (int d = 0; d < 3; ++d) {
     lo[d] = s.domain.lo[d], hi[d] = s.domain.hi[d];
     if (s.domain.periodic[d]) continue;
-    double a = -std::numeric_limits<double>::infinity(), b = std::numeric_limits<double>::infinity();
-    for (const auto& p : s.walls.of<sim::PlaneWall>()) {
-      if (p.finite()) continue;
-      if (p.normal[d] > 1 - 1e-12) a = std::max(a, p.point[d]);
-      if (p.normal[d] < -1 + 1e-12) b = std::min(b, p.point[d]);
-    }
-    if (std::isfinite(a) && std::isfinite(b) && b > a) lo[d] = a, hi[d] = b;
+    double a, b;
+    if (s.walls.facing_planes(d, a, b) && b > a) lo[d] = a, hi[d] = b;
   }
 }
 

@@ -20,16 +20,10 @@ int axis_of(const Vec3& d) {
 
 const char* axis_name(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
 
-// The gap between the infinite planes facing each other across axis b: the
-// highest with normal +e_b (a floor) to the lowest with -e_b (a ceiling).
+// The gap between the infinite planes facing each other across axis b (0: none).
 double plane_gap(const Scene& s, int b) {
-  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
-  for (const auto& p : s.walls.of<PlaneWall>()) {
-    if (p.finite()) continue;
-    if (p.normal[b] > 1 - 1e-12) lo = std::max(lo, p.point[b]);
-    if (p.normal[b] < -1 + 1e-12) hi = std::min(hi, p.point[b]);
-  }
-  return std::isfinite(lo) && std::isfinite(hi) ? hi - lo : 0.0;
+  double lo, hi;
+  return s.walls.facing_planes(b, lo, hi) ? hi - lo : 0.0;
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 #include "sim/walls/walls.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace grains::sim {
 
@@ -15,6 +17,16 @@ double Walls::max_displacement(double t) const {
       m = std::max(m, w.max_speed() * t);
   });
   return m;
+}
+
+bool Walls::facing_planes(int d, double& lo, double& hi) const {
+  lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  for (const auto& p : of<PlaneWall>()) {
+    if (p.finite()) continue;
+    if (p.normal[d] > 1 - 1e-12) lo = std::max(lo, p.point[d]);
+    if (p.normal[d] < -1 + 1e-12) hi = std::min(hi, p.point[d]);
+  }
+  return std::isfinite(lo) && std::isfinite(hi);
 }
 
 double Walls::max_speed() const {

@@ -59,6 +59,10 @@ struct Walls {
   /// A bound on the speed of any wall's surface at any time (0: no wall moves).
   double max_speed() const;
   void advance(double dt);
+  /// The box the infinite planes bound along axis d: the highest floor (a
+  /// plane with normal +e_d) and the lowest ceiling (normal -e_d); false
+  /// when there is not one of each.
+  bool facing_planes(int d, double& lo, double& hi) const;
   /// Whether any wall has a controlled motion (walls[].control).
   bool controlled() const {
     bool any = false;
