@@ -91,7 +91,8 @@ void setup_wall_controls(Scene& s, bool arkode, const std::string& integrator_wh
 
 void ControlWalls::run(Scene& s) {
   // The loads of the controlled walls, summed over the ranks (each summed its own grains).
-  std::vector<double> v;
+  std::vector<double>& v = sums_;
+  v.clear();
   s.walls.for_each([&](const auto& w, std::size_t k) {
     if (!w.control.active()) return;
     const WallLoad& l = s.wall_loads[k];

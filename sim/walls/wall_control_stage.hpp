@@ -6,6 +6,7 @@
 // and sets the wall's speed for the next step. Present only in scenes with
 // such walls.
 #include <string>
+#include <vector>
 
 #include "sim/scene/stage.hpp"
 
@@ -16,6 +17,9 @@ class ControlWalls final : public Stage {
   std::string name() const override { return "walls.control"; }
   Phase phase() const override { return Phase::Kick; }
   void run(Scene& s) override;
+
+ private:
+  std::vector<double> sums_;  // the controlled walls' loads, summed over the ranks (kept: no allocation per step)
 };
 
 /// The cross-section of the box normal to the axis direction d: along each

@@ -49,12 +49,8 @@ same_as_reference() {
     [ -e "$f" ] || continue
     g="$out/$(basename "$f")"
     cmp -s "$f" "$g" && continue
-    awk -F, '
-      FNR == 1 { next }
-      NR == FNR { for (k = 1; k <= NF; k++) { a[FNR, k] = $k; v = $k < 0 ? -$k : $k; if (v > big[k]) big[k] = v }
-                  rows = FNR; next }
-      { for (k = 1; k <= NF; k++) { d = $k - a[FNR, k]; d = d < 0 ? -d : d; if (d > 1e-12 * big[k]) exit 1 } seen = FNR }
-      END { if (seen != rows) exit 1 }' "$f" "$g" || fail "$(basename "$f") differs"
+    awk -F, -v rel=1e-12 -v floor=0 -v name="$(basename "$f")" -f "$(dirname "${BASH_SOURCE[0]}")/../support/csv_agree.awk" \
+      "$f" "$g" || fail "$(basename "$f") differs"
     echo "$(basename "$f"): equal to 1e-12 of each column (sums in another order)"
   done
 }

@@ -42,15 +42,8 @@ for f in "$work"/serial/*.csv; do
   [ -e "$f" ] || continue
   for r in ranks2 ranks4 threads2; do
     g="$work/$r/$(basename "$f")"
-    if ! awk -F, -v name="$r/$(basename "$f")" '
-      FNR == 1 { next }
-      NR == FNR { for (k = 1; k <= NF; k++) { a[FNR, k] = $k; v = $k < 0 ? -$k : $k; if (v > big[k]) big[k] = v
-                                              if (k > 2 && v > all) all = v }
-                  rows = FNR; next }
-      { for (k = 1; k <= NF; k++) { d = $k - a[FNR, k]; d = d < 0 ? -d : d
-          if (d > 1e-6 * big[k] + 1e-15 * all) { printf "%s: row %d column %d: %s vs serial %s\n", name, FNR, k, $k, a[FNR, k]; bad = 1; exit 1 } }
-        seen = FNR }
-      END { if (!bad && seen != rows) { printf "%s: %d rows, serial %d\n", name, seen, rows; exit 1 } }' "$f" "$g"; then
+    if ! awk -F, -v rel=1e-6 -v floor=1e-15 -v name="$r/$(basename "$f")" \
+        -f "$(dirname "$0")/../support/csv_agree.awk" "$f" "$g"; then
       status=1
     else
       echo "$r/$(basename "$f") agrees with serial to 1e-6 of each column"
