@@ -162,6 +162,14 @@ class CaseParser {
       dom.shear.rate = v_.number(sh, sd, "rate", ctx, 0);
       if (sh["rate"] && dom.shear.rate == 0) v_.error(sh["rate"], ctx, "rate must not be 0 (no shear: leave shear out)");
       c_.scene.shear_profile = v_.boolean(sh, sd, "initial_profile", ctx, true);
+      dom.shear.pressure = v_.number(sh, sd, "pressure", ctx, 0);
+      if (sh["pressure"] && !(dom.shear.pressure > 0))
+        v_.error(sh["pressure"], ctx, "pressure must be compressive, > 0 (the normal stress the cell holds across "
+                                      "the gradient): got " + sh["pressure"].Scalar());
+      dom.shear.gain = v_.number(sh, sd, "gain", ctx, 0.1);
+      dom.shear.max_dilation = v_.number(sh, sd, "max_dilation", ctx, 0);
+      for (const char* k : {"gain", "max_dilation"})
+        if (sh[k] && !sh["pressure"]) v_.error(sh[k], ctx, std::string(k) + " goes with pressure (the cell's servo)");
       c_.scene.shear_where = v_.where(sh);
       if (f < 0 || g < 0) return;
       if (f == g) {

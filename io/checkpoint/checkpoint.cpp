@@ -158,6 +158,17 @@ void write_head(const h5::File& f, const sim::Clock& clock, const CheckpointExtr
   f.write_string("/case/effective", x.case_effective);
 }
 
+// A pressure-servoed Lees–Edwards cell (domain.shear.pressure): its height
+// along the gradient and the piecewise offset of its sheared images, which
+// the case no longer gives.
+void write_domain(const h5::File& f, const sim::Domain& d) {
+  if (!d.shear.servo()) return;
+  f.group("/domain");
+  const int g = d.shear.gradient;
+  f.write_vector("/domain/shear_cell", std::vector<double>{d.hi[g] - d.lo[g], d.shear.base_offset, d.shear.base_time},
+                 3, "m, m, s");
+}
+
 // The radius-growth servo (Scene::growth): what it measured last, the rate
 // in force and the phase of the schedule.
 void write_growth(const h5::File& f, const sim::GrowthServo& g) {
@@ -207,6 +218,7 @@ void write_checkpoint(const fs::path& file, sim::Scene& s, const CheckpointExtra
   try {
     auto f = h5::File::create(tmp.string());
     write_head(f, s.clock, x);
+    write_domain(f, s.domain);
     write_particles(f, s.particles, 0, s.particles.n_owned());
     if (s.particles.fields().has(sim::Field::Body)) write_bodies(f, s.bodies, 0, s.bodies.size());
     write_neighbors(f, s.neighbors);
@@ -240,6 +252,7 @@ void write_checkpoint_parallel(const fs::path& file, sim::Scene& s, sim::IdBlock
     // the same point and the file is closed (collectively) by all of them.
     auto f = h5::File::create_parallel(tmp.string());
     write_head(f, s.clock, x);
+    write_domain(f, s.domain);
     auto& q = b.particles;
     write_particles(f, q, b.particle_offset, b.particle_total);
     if (s.particles.fields().has(sim::Field::Body))
@@ -396,6 +409,20 @@ void read_neighbors(const h5::File& f, sim::Scene& s) {
   nl.restore(s.particles, std::move(b));
 }
 
+void read_domain(const h5::File& f, const std::string& file, sim::Domain& d) {
+  if (!d.shear.servo()) return;
+  if (!f.exists("/domain/shear_cell"))
+    throw CheckpointError(file + ": has no /domain/shear_cell, which the pressure of domain.shear needs: the "
+                                 "checkpoint was written for a cell of fixed volume");
+  std::vector<double> v;
+  f.read_vector("/domain/shear_cell", v, 1, 3);
+  if (v.size() != 3 || !(v[0] > 0)) throw CheckpointError(file + ": /domain/shear_cell is corrupt");
+  const int g = d.shear.gradient;
+  d.hi[g] = d.lo[g] + v[0];
+  d.shear.base_offset = v[1];
+  d.shear.base_time = v[2];
+}
+
 void read_growth(const h5::File& f, sim::GrowthServo& g) {
   g = {};  // checkpoints before 2026-11-21 have none: the servo measures at the first step
   if (!f.exists("/growth/started")) return;
@@ -506,6 +533,7 @@ CheckpointExtras read_checkpoint(const fs::path& file, sim::Scene& s) {
     check_compatible(f, s);
     const auto step = f.read_scalar<std::int64_t>("/clock/step");
     read_walls(f, s.walls);
+    read_domain(f, file.string(), s.domain);
     read_particles(f, s.particles);
     if (s.particles.fields().has(sim::Field::Body)) read_bodies(f, s);
     read_neighbors(f, s);

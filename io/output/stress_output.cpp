@@ -118,7 +118,8 @@ void StressOutput::restart(sim::Scene& s, const sim::RestartPoint&) {
 }
 
 void StressOutput::arm(sim::Scene& s) {
-  s.stress_probe = nullptr;
+  // Off the chain of armed probes (another, the pressure servo's, may follow).
+  if (s.stress_probe == &probe_) s.stress_probe = probe_.next;
   // Its cadence, and the last step (the run's final state).
   if ((s.clock.step + 1) % every_ != 0 && s.clock.step + 1 != s.clock.n_steps) return;
   if (cfg_.region_given)
@@ -135,6 +136,7 @@ void StressOutput::arm(sim::Scene& s) {
   probe_.axis = std::max(cfg_.axis, 0);
   probe_.bins = cfg_.bins;
   probe_.reset(omp_get_max_threads());
+  probe_.next = s.stress_probe;
   s.stress_probe = &probe_;
 }
 
@@ -196,9 +198,9 @@ void StressOutput::measure(sim::Scene& s) {
     // The bins its sphere reaches get its slab volumes (along a periodic
     // axis its images' too); the one of its centre its mass.
     const double L = pr.period[ax];
-    for (const double shift : {0.0, L, -L}) {
-      if (shift != 0 && !(L > 0)) break;
-      const double c = x[i][ax] + shift;
+    for (const int k : {0, 1, -1}) {
+      if (k != 0 && !(L > 0)) break;  // (a non-periodic axis: the sphere itself only)
+      const double c = x[i][ax] + k * L;
       const int b0 = std::max(0, static_cast<int>(std::floor((c - r - pr.lo[ax]) / width)));
       const int b1 = std::min(pr.bins - 1, static_cast<int>(std::floor((c + r - pr.lo[ax]) / width)));
       for (int b = b0; b <= b1; ++b)
@@ -267,7 +269,7 @@ void StressOutput::measure(sim::Scene& s) {
 }
 
 void StressOutput::finish(sim::Scene& s) {
-  s.stress_probe = nullptr;
+  if (s.stress_probe == &probe_) s.stress_probe = probe_.next;
   if (!sim::Comm::world().root() || !stress_.is_open()) return;
   stress_.close();
   if (profile_.is_open()) profile_.close();

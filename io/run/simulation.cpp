@@ -223,6 +223,7 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
       // Every rank read the whole state: keep this rank's part and rebuild;
       // the histories follow their pairs by global ids.
       const auto builds = s.scene.neighbors.stats().builds;
+      if (s.scene.domain.shear.servo()) s.scene.exchange->set_domain(s.scene.domain);  // the cell's height then
       s.scene.exchange->distribute_initial(s.scene, &x.cuts);
       sim::NeighborStage::full_update(s.scene, s.c.scene.sort_particles, true);
       s.scene.neighbors.keep_build_count(builds);  // (the saving run counted this update)

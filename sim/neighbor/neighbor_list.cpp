@@ -70,7 +70,7 @@ bool NeighborList::needs_rebuild(const ParticleStore& p, const Walls& walls, dou
   double m2 = 0;
   for (std::size_t i = 0; i < n; ++i) m2 = std::max(m2, (p.x[i] - x_build_[i]).squaredNorm());
   const double m = std::sqrt(m2) + growth_;
-  return 2 * m + image_speed_ * (time - build_time_) > skin_ || m + walls.max_displacement(time - build_time_) > skin_;
+  return 2 * m + image_speed_ * (time - build_time_) + image_travel_ > skin_ || m + walls.max_displacement(time - build_time_) > skin_;
 }
 
 void NeighborList::sort_by_cell(ParticleStore& p, const Vec3& lo, const Vec3& hi) const {
@@ -185,6 +185,7 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
 
   x_build_.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(n_own));
   build_time_ = time;
+  image_travel_ = 0;
   build_id_.assign(p.id.begin(), p.id.begin() + static_cast<std::ptrdiff_t>(n));
   growth_ = 0;
   ++stats_.builds;
@@ -239,6 +240,7 @@ void NeighborList::restore(const ParticleStore& p, BuildState b) {
   build_id_ = std::move(b.row_id);
   stats_.builds = b.builds;
   growth_ = b.growth;
+  image_travel_ = 0;
   stats_.pairs = partner.size();
   compute_pair_constants(p);
   if (with_gather_) build_gather(p);

@@ -43,6 +43,10 @@ class NeighborList {
   /// Lees–Edwards boundaries: the speed of the sheared images relative to
   /// the cell, which closes the skin between a grain and an image too.
   void set_image_speed(double u) { image_speed_ = u; }
+  double image_speed() const { return image_speed_; }
+  /// Periodic images moved by d beyond that speed since the build (a
+  /// Lees–Edwards cell whose height a servo changes): counted by the trigger.
+  void add_image_travel(double d) { image_travel_ += d; }
   bool frozen() const { return frozen_; }
   double reach() const { return reach_; }
   int history_size() const { return history_size_; }
@@ -155,6 +159,7 @@ class NeighborList {
   bool frozen_ = false;
   double growth_ = 0;  // largest radius growth since the build
   double image_speed_ = 0;
+  double image_travel_ = 0;
   std::vector<Vec3> x_build_;
   // Global ids of all particles (owned and ghosts) at the last build: the
   // keys that carry history to the next build.

@@ -97,6 +97,23 @@ Vec3 Decomposition::hi(int rank) const {
   return {cuts_[0][c[0] + 1], cuts_[1][c[1] + 1], cuts_[2][c[2] + 1]};
 }
 
+void Decomposition::resize(int k, double lo, double hi) {
+  auto& cut = cuts_[static_cast<std::size_t>(k)];
+  const double f = (hi - lo) / (hi_[k] - lo_[k]);
+  for (auto& c : cut) c = lo + (c - lo_[k]) * f;
+  cut.front() = lo_[k] = lo;
+  cut.back() = hi_[k] = hi;
+  if (dims_[k] > 1)
+    for (std::size_t c = 0; c + 1 < cut.size(); ++c)
+      if (cut[c + 1] - cut[c] < min_width_) {
+        std::ostringstream m;
+        m << "the cell shrank along " << "xyz"[k] << " to " << hi - lo << " m: a sub-domain of its " << dims_[k]
+          << " ranks there is now narrower than the ghost cut-off " << min_width_
+          << " m; use fewer ranks along that axis (parallel.dims)";
+        throw std::runtime_error(m.str());
+      }
+}
+
 bool Decomposition::set_cuts(const std::array<std::vector<double>, 3>& cuts) {
   for (int d = 0; d < 3; ++d) {
     const auto& c = cuts[d];

@@ -42,6 +42,10 @@ class Decomposition {
   /// from the domain's low to its high side.
   bool set_cuts(const std::array<std::vector<double>, 3>& cuts);
   double min_width() const { return min_width_; }
+  /// The domain's extent along k becomes [lo, hi] (a pressure-servoed
+  /// Lees–Edwards cell): the cuts follow affinely. Throws std::runtime_error
+  /// when a slab would become narrower than min_width.
+  void resize(int k, double lo, double hi);
 
   /// Moves the cuts to quantiles of the owned positions of all ranks
   /// (a histogram reduced over ranks), each position counted with its

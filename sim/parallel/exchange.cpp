@@ -211,7 +211,7 @@ double Exchange::sheared(const Swap& sw, double xf, signed char wrap, double tim
   const double Lf = domain_.hi[f] - domain_.lo[f];
   // The offset as U t less the whole periods taken off at the build: the
   // same bits whenever the list was built within the same period.
-  const double offset = domain_.shear_speed() * time - sw.offset_periods * Lf;
+  const double offset = domain_.shear_travel(time) - sw.offset_periods * Lf;
   return xf + sw.shear_side * offset + wrap * Lf;
 }
 
@@ -241,7 +241,7 @@ void Exchange::build_ghosts(ParticleStore& p, double time) {
       if (ws && domain_.shear.on() && d == domain_.shear.gradient) {
         sw.shear_side = -dir;
         const int f = domain_.shear.flow;
-        sw.offset_periods = std::floor(domain_.shear_speed() * time / (domain_.hi[f] - domain_.lo[f]));
+        sw.offset_periods = std::floor(domain_.shear_travel(time) / (domain_.hi[f] - domain_.lo[f]));
       }
       sbuf_.clear();
       if (sw.dest >= 0)
@@ -275,6 +275,15 @@ void Exchange::build_ghosts(ParticleStore& p, double time) {
     }
   }
   stats_.ghosts = p.n_ghost();
+}
+
+void Exchange::set_domain(const Domain& d) {
+  const int g = d.shear.gradient;
+  dec_.resize(g, d.lo[g], d.hi[g]);
+  const double L = d.hi[g] - d.lo[g];
+  for (auto& sw : swaps_)
+    if (sw.recv_shift[g] != 0) sw.recv_shift[g] = std::copysign(L, sw.recv_shift[g]);
+  domain_ = d;
 }
 
 void Exchange::update_ghosts(ParticleStore& p, double time) {

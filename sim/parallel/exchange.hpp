@@ -76,6 +76,10 @@ class Exchange {
   /// Lees–Edwards boundaries the gradient's images first, displaced along
   /// the flow and moving relative to the cell).
   void build_ghosts(ParticleStore& p, double time);
+  /// The domain's new height along the Lees–Edwards gradient (the pressure
+  /// servo, or a restart of it): the cuts follow affinely, and the images
+  /// across that axis are shifted by the new length from the next update.
+  void set_domain(const Domain& d);
   /// Refreshes the ghosts' kinematics along the send lists, at time t.
   void update_ghosts(ParticleStore& p, double time);
 

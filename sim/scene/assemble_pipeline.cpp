@@ -16,6 +16,7 @@
 #include "sim/neighbor/neighbor_stage.hpp"
 #include "sim/scene/body_forces.hpp"
 #include "sim/scene/build_scene.hpp"
+#include "sim/scene/shear_pressure_stage.hpp"
 #include "sim/walls/wall_contact_stage.hpp"
 #include "sim/walls/wall_control_stage.hpp"
 
@@ -169,6 +170,7 @@ Pipeline assemble_pipeline(const Scene& s, const SceneConfig& c) {
     add_integrators<false>(p, n);
   if (n.moving_walls && c.integrator == Integrator::Verlet) p.add(std::make_unique<MoveWalls>());
   if (s.walls.controlled()) p.add(std::make_unique<ControlWalls>());
+  if (s.domain.shear.servo()) p.add(std::make_unique<ShearPressure>());
   if (c.growth.enabled) {
     if (c.integrator != Integrator::Verlet)
       throw SetupError("radius_growth (isotropic compression) runs with the Verlet integrator only; remove "

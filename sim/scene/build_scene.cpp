@@ -15,6 +15,7 @@
 #include "sim/laws/contact_law.hpp"
 #include "sim/laws/normal_laws.hpp"
 #include "sim/scene/placement.hpp"
+#include "sim/scene/shear_pressure_stage.hpp"
 #include "sim/walls/wall_control_stage.hpp"
 #include "sim/integrate/clump_bodies.hpp"
 
@@ -356,6 +357,7 @@ Scene build_scene(SceneConfig& c) {
     if (need.clumps)
       throw SetupError(c.shear_where + ": domain.shear (Lees-Edwards) does not take clumps yet (a body crossing the "
                        "sheared face would have to carry its balls' velocities)");
+    setup_shear_pressure(s, c.shear_where);
     if (c.parallel.dims[s.domain.shear.flow] > 1)
       throw SetupError(c.parallel.where + ": with domain.shear the ranks may not split the flow axis " +
                        std::string(1, "xyz"[s.domain.shear.flow]) + " (its images are displaced along it): give 1 there");

@@ -49,20 +49,36 @@ struct Domain {
   /// the flow by offset(t) = rate L_g t and moves at speed() = rate L_g
   /// relative to it; a grain leaving through that face comes back through
   /// the lower one displaced by -offset and slowed by speed(), and the other
-  /// way round.
+  /// way round. With `pressure` > 0 the cell's height L_g follows a servo
+  /// (sim/scene/shear_pressure_stage.hpp); the offset is then integrated
+  /// piecewise: base_offset at base_time, growing at rate L_g since.
   struct Shear {
     int flow = -1, gradient = -1;
     double rate = 0;  // 1/s
+    double pressure = 0;        // the imposed normal stress across the gradient, Pa (0: the volume is fixed)
+    double gain = 0.1;          // the servo's relative dilation rate per relative pressure error, per unit |rate|
+    double max_dilation = 0;    // the fastest |dL_g/dt| / L_g, 1/s (0: |rate|)
+    double base_offset = 0, base_time = 0;  // the offset (not wrapped) at base_time (0, 0 at a fixed volume)
     bool on() const { return flow >= 0; }
+    bool servo() const { return on() && pressure > 0; }
   } shear;
   double shear_speed() const {
     return shear.on() ? shear.rate * (hi[shear.gradient] - lo[shear.gradient]) : 0.0;
   }
+  /// The upper image's displacement along the flow at time t, not wrapped.
+  double shear_travel(double t) const { return shear.base_offset + shear_speed() * (t - shear.base_time); }
   /// The upper image's displacement along the flow at time t, in [0, L_flow).
   double shear_offset(double t) const {
     const double L = hi[shear.flow] - lo[shear.flow];
-    const double d = std::fmod(shear_speed() * t, L);
+    const double d = std::fmod(shear_travel(t), L);
     return d < 0 ? d + L : d;
+  }
+  /// A new cell height along the gradient (the pressure servo), from time t
+  /// on: the offset stays continuous and grows at the new speed.
+  void set_gradient_length(double L, double t) {
+    shear.base_offset = shear_travel(t);
+    shear.base_time = t;
+    hi[shear.gradient] = lo[shear.gradient] + L;
   }
   /// wrap() for a grain with velocity v at time t: across the sheared face
   /// first (its position along the flow and its velocity change), then along

@@ -71,13 +71,22 @@ std::vector<EffectDoc> scene_docs() {
                "flow by rate L_g t and moves at rate L_g relative to it, so a grain leaving through that face comes "
                "back through the lower one displaced and slowed by rate L_g (and the other way round); contacts act "
                "across it with that relative velocity. The mean flow is u = rate (y - y_centre) along the flow. With "
-               "initial_profile the grains start on it. Under MPI the ranks split the gradient and the third axis, "
-               "never the flow. Verlet only; not with clumps.",
+               "initial_profile the grains start on it. With pressure the cell's height along the gradient follows a "
+               "servo holding the normal stress across it (contact + kinetic, the whole cell) at that value (da Cruz "
+               "et al. 2005): (dL/dt)/L = gain |rate| (sigma - pressure)/pressure, clamped to max_dilation, the grains' "
+               "coordinates along the gradient scaled with it. Under MPI the ranks split the gradient and the third "
+               "axis, never the flow. Verlet only; not with clumps.",
                {key("rate", K::Number, "shear rate du_flow/dx_gradient (either sign)").req().si("1/s"),
                 key("flow", K::String, "the axis of the mean flow").req().one_of({"x", "y", "z"}),
                 key("gradient", K::String, "the axis the flow varies along").req().one_of({"x", "y", "z"}),
                 key("initial_profile", K::Bool, "add the mean flow rate (y - y_centre) to the grains' velocities at the start")
-                    .def_bool(true)}});
+                    .def_bool(true),
+                key("pressure", K::Number, "normal stress the cell holds across the gradient, > 0; absent: the "
+                                           "volume is fixed").si("Pa"),
+                key("gain", K::Number, "the servo's relative dilation rate per relative pressure error, in units of "
+                                       "|rate|").def(0.1).in(0, 10, true),
+                key("max_dilation", K::Number, "the fastest relative change of the cell's height; default |rate|")
+                    .si("1/s").in(0, inf, true)}});
   d.push_back({"force.gravity", "gravity: [gx, gy, gz]", "Uniform gravity, F = m g, applied where forces are cleared each step; absent or zero costs nothing.",
                {key("gravity", K::Vec3, "acceleration").si("m/s^2")}});
   d.push_back({"particles", "particles: [ {...}, ... ]", "A set of particles: spheres, ellipsoids or rigid clumps (see particles.shape).",

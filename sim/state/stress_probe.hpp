@@ -35,8 +35,14 @@ struct StressProbe {
   /// by the offset then (flow -1: none).
   int shear_flow = -1, shear_gradient = -1;
   double shear_offset = 0;
+  /// The whole domain with no bins (the pressure servo of a sheared cell):
+  /// every branch counts once, wholly, in row 0.
+  bool whole = false;
   /// Per thread: the region's sum, then one per bin.
   std::vector<std::vector<Sym>> rows;
+  /// Another probe armed on the same step (the force stages see only the
+  /// first): it gets every contact too.
+  StressProbe* next = nullptr;
 
   void reset(int threads) {
     rows.assign(static_cast<std::size_t>(threads), std::vector<Sym>(static_cast<std::size_t>(1 + bins), Sym{}));
@@ -46,6 +52,11 @@ struct StressProbe {
   void add(int thread, const Vec3& xi, const Vec3& F, const Vec3& b) {
     const Sym c{F.x() * b.x(), F.y() * b.y(), F.z() * b.z(), 0.5 * (F.x() * b.y() + F.y() * b.x()),
                 0.5 * (F.x() * b.z() + F.z() * b.x()), 0.5 * (F.y() * b.z() + F.z() * b.y())};
+    if (next) next->add(thread, xi, F, b);
+    if (whole) {
+      accumulate(rows[static_cast<std::size_t>(thread)][0], c, 1.0);
+      return;
+    }
     // The images of the branch that reach the domain along periodic
     // dimensions, the gradient's first (its images are displaced along the flow).
     const int g = shear_flow >= 0 ? shear_gradient : 0;

@@ -317,6 +317,15 @@ TEST(StressOutput, TheVerticalStressOfAStaticBedIsTheWeightAboveInEveryBin) {
     double expect = 0;
     for (std::size_t i = 0; i < p.n_owned(); ++i) expect += p.mass[i] * std::clamp(p.x[i].z() - z0, 0.0, w);
     expect *= g / (A * w);
+    // The solid fraction: the spheres' volume between z0 and z1 (spherical
+    // caps and slabs), over the bin's volume (z is not periodic: each sphere once).
+    double solid = 0;
+    for (std::size_t i = 0; i < p.n_owned(); ++i) {
+      const double r = p.radius[i], a = std::max(z0, p.x[i].z() - r) - p.x[i].z(),
+                   c = std::min(z1, p.x[i].z() + r) - p.x[i].z();
+      if (c > a) solid += M_PI * (r * r * (c - a) - (c * c * c - a * a * a) / 3);
+    }
+    EXPECT_NEAR(row[static_cast<std::size_t>(pr.col("solid_fraction"))], solid / (A * w), 1e-9) << "bin " << b;
     const double szz = row[static_cast<std::size_t>(pr.col("szz_Pa"))];
     if (expect > 1)
       EXPECT_NEAR(szz / expect, 1.0, 0.01) << "bin " << b << " of " << (z0 + z1) / 2 << " m";
@@ -497,6 +506,74 @@ TEST(LeesEdwards, AShearedCellFlowsOnTheLinearProfileWithAUniformShearStress) {
   EXPECT_NEAR(cell / rows / sxy_mean, 1.0, 1e-6);
 }
 
+TEST(LeesEdwards, TheOffsetStaysContinuousWhenTheCellHeightChanges) {
+  // The pressure servo changes L_g: the images' offset must not jump, and
+  // grows at the new speed rate L_g afterwards.
+  sim::Domain d;
+  d.lo = sim::Vec3(0, 0, 0), d.hi = sim::Vec3(0.01, 0.02, 0.006);
+  d.periodic = {true, true, true};
+  d.shear.flow = 0, d.shear.gradient = 1, d.shear.rate = 30, d.shear.pressure = 100;
+  const double t1 = 0.0123, t2 = 0.02;
+  const double before = d.shear_travel(t1);
+  EXPECT_DOUBLE_EQ(before, 30 * 0.02 * t1);
+  d.set_gradient_length(0.018, t1);
+  EXPECT_DOUBLE_EQ(d.hi.y(), 0.018);
+  EXPECT_NEAR(d.shear_travel(t1), before, 1e-15);
+  EXPECT_NEAR(d.shear_travel(t2), before + 30 * 0.018 * (t2 - t1), 1e-15);
+  EXPECT_NEAR(d.shear_offset(t2), std::fmod(before + 30 * 0.018 * (t2 - t1), 0.01), 1e-15);
+}
+
+// The mean of a stress.csv column over the rows from time t0 on.
+double csv_mean_after(const std::filesystem::path& f, const std::string& column, double t0, int* rows = nullptr) {
+  const Csv st = read_csv(f);
+  double sum = 0;
+  int n = 0;
+  for (const auto& row : st.rows)
+    if (row[1] >= t0) sum += row[static_cast<std::size_t>(st.col(column))], ++n;
+  if (rows) *rows = n;
+  return n > 0 ? sum / n : std::nan("");
+}
+
+TEST(ShearPressure, TheCellCompressesOrDilatesUntilItHoldsThePressure) {
+  // Da Cruz et al.'s pressure-imposed simple shear, both ways, as a
+  // two-stage run. Stage 1: a dilute cell (phi 0.28) sheared at 20/s under
+  // a normal stress it cannot bear (40 Pa): the servo shrinks its height
+  // until the measured sigma_yy (contact + kinetic, the stress output's own
+  // measurement, not the servo's sums) holds the target. Stage 2, from
+  // stage 1's last checkpoint with the target lowered to 10 Pa: the cell
+  // grows again and holds the new target.
+  const std::string out = "output: {progress: false, vtk: false, stress: {every_steps: 100, average_after: ";
+  auto s1 = from_yaml(shear_cell(20, ", pressure: 40, gain: 0.5", 1.2) + out + "0.8}}\n" +
+                      "checkpoint: {every: 0.6}\n");
+  TempDir tmp("shear_pressure");
+  run_into(s1, tmp.path / "stage1");
+  const auto st1 = tmp.path / "stage1" / "stress.csv";
+  const double V1 = csv_mean_after(st1, "volume_m3", 0.8);
+  EXPECT_LT(V1, 0.75 * 0.01 * 0.01 * 0.006) << "the cell compressed (its height from 10 mm)";
+  int n = 0;
+  EXPECT_NEAR(csv_mean_after(st1, "syy_Pa", 0.8, &n) / 40, 1.0, 0.03) << "the mean normal stress across the gradient";
+  EXPECT_GT(n, 20);
+  const double phi1 = csv_mean_after(st1, "solid_fraction", 0.8);
+  EXPECT_GT(phi1, 0.45) << "denser than the start";
+
+  auto s2 = from_yaml(shear_cell(20, ", pressure: 10, gain: 0.5", 2.0) + out + "1.6}}\n");
+  io::RunOptions opt;
+  opt.out_dir = tmp.path / "stage2";
+  opt.quiet = true;
+  std::filesystem::path last;
+  for (const auto& e : std::filesystem::directory_iterator(tmp.path / "stage1" / "checkpoints"))
+    if (e.path().extension() == ".h5" && (last.empty() || e.path() > last)) last = e.path();
+  opt.restart = last;
+  io::run(s2, opt);
+  EXPECT_GT(s2.scene.clock.time, 1.99);
+  // (Measured: phi 0.565 at 40 Pa, I = 0.16; 0.544 at 10 Pa, I = 0.32.)
+  const auto st2 = tmp.path / "stage2" / "stress.csv";
+  EXPECT_GT(csv_mean_after(st2, "volume_m3", 1.6), 1.02 * V1) << "under a lower pressure the cell dilates";
+  EXPECT_LT(csv_mean_after(st2, "solid_fraction", 1.6), phi1 - 0.01);
+  EXPECT_NEAR(csv_mean_after(st2, "syy_Pa", 1.6, &n) / 10, 1.0, 0.05);
+  EXPECT_GT(n, 20);
+}
+
 TEST(LeesEdwards, ErrorsAreLocated) {
   std::string y = shear_cell(20, "", 0.01);
   std::string e = errors_of(std::string(y).replace(y.find("periodic: true"), 14, "periodic: [true, false, true]"));
@@ -511,6 +588,10 @@ TEST(LeesEdwards, ErrorsAreLocated) {
   e = errors_of(ark);
   EXPECT_NE(e.find("domain.shear (Lees-Edwards) moves its images by the Verlet step"), std::string::npos) << e;
   EXPECT_NE(e.find("case.yaml:"), std::string::npos) << e;
+  e = errors_of(std::string(y).replace(y.find("gradient: y"), 11, "gradient: y, pressure: -5"));
+  EXPECT_NE(e.find("pressure must be compressive, > 0"), std::string::npos) << e;
+  e = errors_of(std::string(y).replace(y.find("gradient: y"), 11, "gradient: y, gain: 0.3"));
+  EXPECT_NE(e.find("gain goes with pressure"), std::string::npos) << e;
 }
 
 }  // namespace
