@@ -131,9 +131,12 @@ def main():
         ax[0].errorbar(I, [q["mu"] for q in pts], yerr=[q["mu_err"] for q in pts], fmt="o", label="grains")
         ax[1].errorbar(I, [q["phi"] for q in pts], yerr=[q["phi_err"] for q in pts], fmt="o", label="grains")
         if fit:
-            xs = [10 ** (-3.5 + 3.5 * k / 100) for k in range(101)]
+            xs = [10 ** (-3.2 + 2.9 * k / 100) for k in range(101)]  # 6e-4 ... 0.5
             ax[0].plot(xs, [fit["mu_s"] + (fit["mu_2"] - fit["mu_s"]) / (1 + fit["I_0"] / x) for x in xs], "-",
                        label="mu_s %.3f, mu_2 %.3f, I_0 %.3f" % (fit["mu_s"], fit["mu_2"], fit["I_0"]))
+            # Jop, Forterre & Pouliquen 2006 (Nature 441, 727): glass beads, experiment.
+            ax[0].plot(xs, [0.38 + 0.26 / (1 + 0.279 / x) for x in xs], "--", color="gray",
+                       label="Jop et al. 2006 (glass beads, experiment)")
             ax[1].plot(xs, [fit["phi_c"] - fit["b"] * x for x in xs], "-",
                        label="phi_c %.3f, b %.3f" % (fit["phi_c"], fit["b"]))
         for a, name in zip(ax, ["mu = -s_xy / s_yy", "solid fraction"]):
