@@ -19,6 +19,9 @@ import math
 import os
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from run_summary import stress_summary  # noqa: E402
+
 RHO, D = 2500.0, 0.001  # the case's grain density and mean diameter
 
 
@@ -78,14 +81,6 @@ def fit_line(xs, ys):
     mx, my = sum(xs) / n, sum(ys) / n
     slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
     return my - slope * mx, -slope
-
-
-def stress_summary(summary):
-    """The output.stress stage's part of summary.json."""
-    for key, value in summary["stage_details"].items():
-        if "output.stress" in key:
-            return value["stress"]
-    raise SystemExit("summary.json has no output.stress")
 
 
 def main():
