@@ -6,13 +6,20 @@ friction 0.5, gravity 1 tilted 26 degrees, dt = 1e-4, periodic in x and y)
 as one set of initial positions for both codes: LAMMPS's data file is not
 shipped with its Debian package, so the base and the bed are made here.
 
-  gen.py WORK STEPS [NX] [LAYERS] [SEED]
+  gen.py WORK STEPS [NX] [LAYERS] [SEED] [ANGLE] [BASE]
 
 writes WORK/data.chute and WORK/in.chute (LAMMPS) and WORK/case.yaml with
 WORK/base.xyz and WORK/bed.xyz (grains). The base: NX x NX spheres on a
 square lattice of spacing 1 in the plane z = 0, each moved by up to 0.3 in x
 and y (a rough floor). The bed: LAYERS layers of NX x NX spheres on a
-lattice of spacing 1.05 above it, each moved by up to 0.02 (no two touch)."""
+lattice of spacing 1.05 above it, each moved by up to 0.02 (no two touch).
+ANGLE: the chute's inclination in degrees (default 26, LAMMPS's; the chute
+flow case, cases/chute_flow, uses 24 as Silbert et al. 2001). BASE: lattice
+(the default, as above) or random: NX x NX spheres at random positions no
+closer than 0.7 in x and y, each at a random height in [-0.25, 0.25] (a
+random rough floor, as Silbert et al.'s frozen random packing: a lattice
+base lets a monodisperse flow order into layers), on a plane at z = 0 that
+stops grains from falling through its gaps."""
 import math
 import random
 import sys
@@ -22,11 +29,24 @@ steps = int(sys.argv[2])
 nx = int(sys.argv[3]) if len(sys.argv) > 3 else 40
 layers = int(sys.argv[4]) if len(sys.argv) > 4 else 21
 seed = int(sys.argv[5]) if len(sys.argv) > 5 else 1
+angle = float(sys.argv[6]) if len(sys.argv) > 6 else 26.0
+base_kind = sys.argv[7] if len(sys.argv) > 7 else "lattice"
 end = "%.10g" % (steps * 1e-4)
 rng = random.Random(seed)
 L = float(nx)  # box side (base spacing 1)
-base = [((i + 0.5 + rng.uniform(-0.3, 0.3)) % L, (j + 0.5 + rng.uniform(-0.3, 0.3)) % L, 0.0)
-        for i in range(nx) for j in range(nx)]
+if base_kind == "lattice":
+    base = [((i + 0.5 + rng.uniform(-0.3, 0.3)) % L, (j + 0.5 + rng.uniform(-0.3, 0.3)) % L, 0.0)
+            for i in range(nx) for j in range(nx)]
+elif base_kind == "random":
+    base = []
+    while len(base) < nx * nx:  # random sequential addition, periodic in x and y
+        x, y = rng.uniform(0, L), rng.uniform(0, L)
+        if all(min(abs(x - p[0]), L - abs(x - p[0])) ** 2 + min(abs(y - p[1]), L - abs(y - p[1])) ** 2 >= 0.49
+               for p in base):
+            base.append((x, y, rng.uniform(-0.25, 0.25)))
+else:
+    sys.exit("gen.py: BASE is lattice or random, not " + base_kind)
+z0 = 1.1 if base_kind == "lattice" else 1.35  # the bed's first layer clear of the base
 s = L / math.floor(L / 1.05)  # bed spacing: a whole number of cells across the periodic box
 m = int(round(L / s))
 bed = []
@@ -34,8 +54,8 @@ for k in range(layers):
     for i in range(m):
         for j in range(m):
             bed.append(((i + 0.5) * s + rng.uniform(-0.02, 0.02), (j + 0.5) * s + rng.uniform(-0.02, 0.02),
-                        1.1 + k * s + rng.uniform(-0.02, 0.02)))
-ztop = 1.1 + layers * s
+                        z0 + k * s + rng.uniform(-0.02, 0.02)))
+ztop = z0 + layers * s
 zmax = ztop + 40.0
 
 with open(work + "/base.xyz", "w") as f:
@@ -45,7 +65,9 @@ with open(work + "/bed.xyz", "w") as f:
     for p in bed:
         f.write("%.17g %.17g %.17g\n" % p)
 
-g = math.radians(26.0)
+g = math.radians(angle)
+floor = ("walls:\n  - {name: floor, type: plane, point: [0, 0, 0], normal: [0, 0, 1], material: grain}\n"
+         if base_kind == "random" else "")
 with open(work + "/case.yaml", "w") as f:
     f.write(f"""title: LAMMPS chute benchmark scene ({len(base) + len(bed)} spheres)
 domain: {{min: [0, 0, -1], max: [{L}, {L}, {zmax}], periodic: [true, true, false]}}
@@ -59,7 +81,7 @@ contact:
 particles:
   - {{name: base, material: grain, radius: 0.5, frozen: true, placement: {{type: file, path: base.xyz}}}}
   - {{name: bed, material: grain, radius: 0.5, placement: {{type: file, path: bed.xyz}}}}
-time: {{dt: 1e-4, end: {end}}}
+{floor}time: {{dt: 1e-4, end: {end}}}
 neighbor: {{skin: 0.1}}
 output: {{every: {end}}}
 """)
@@ -91,7 +113,7 @@ timestep        0.0001
 group           bottom type 2
 group           active subtract all bottom
 neigh_modify    exclude group bottom bottom
-fix             1 all gravity 1.0 chute 26.0
+fix             1 all gravity 1.0 chute %g
 fix             2 bottom freeze
 fix             3 active nve/sphere
 compute         ke active ke
@@ -100,5 +122,5 @@ thermo_style    custom step atoms c_ke v_vx
 thermo_modify   norm no
 thermo          %d
 run             %d
-""" % (steps, steps))
+""" % (angle, steps, steps))
 print("N=%d BASE=%d BED=%d L=%g" % (len(base) + len(bed), len(base), len(bed), L))
