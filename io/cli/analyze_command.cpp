@@ -4,12 +4,14 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <sstream>
 
 #include "postprocess/analysis.hpp"
 #include "postprocess/plots.hpp"
 #include "postprocess/render.hpp"
+#include "postprocess/stress_series.hpp"
 
 namespace grains::io {
 
@@ -21,8 +23,8 @@ namespace {
 const char* kAnalyzeUsage =
     "usage: grains analyze OUTDIR [--frame N | --time T] [--region xmin,ymin,zmin,xmax,ymax,zmax]\n"
     "                      [--margin D] [--axis x|y|z] [--rattler-contacts K] [--rattlers once|iterative]\n"
-    "                      [--samples M] [--no-walls] [--no-plots] [-o DIR]\n"
-    "  OUTDIR   a folder written by 'grains run' (holds particles.pvd)\n"
+    "                      [--samples M] [--no-walls] [--no-plots] [--from T] [-o DIR]\n"
+    "  OUTDIR   a folder written by 'grains run' (holds particles.pvd, or output.stress's stress.csv)\n"
     "  --frame  frame number (0 = first; negative counts from the end; default -1, the last)\n"
     "  --time   the frame closest to this time (s)\n"
     "  --region the analysis box in metres (default: automatic bulk region)\n"
@@ -32,6 +34,9 @@ const char* kAnalyzeUsage =
     "  --rattlers once (default) or iterative (repeat after removing rattlers' contacts)\n"
     "  --no-walls particle contacts only (default: contacts with the frame's walls count too)\n"
     "  --samples Monte Carlo points per particle for ellipsoids and clumps (default 1000)\n"
+    "  --from   the stress series (stress.csv, profile.csv of output.stress) is averaged from this time, s\n"
+    "           (default: the run's output.stress.average_after, else the series' second half); written\n"
+    "           to stress_series.json: means, block errors, p, sqrt(J2)/p, shear-to-normal ratios, profiles\n"
     "  -o DIR   where to write analysis.json, the CSV files and the PNG plots (default OUTDIR/analysis)\n";
 
 const char* kRenderUsage =
@@ -64,6 +69,7 @@ int run_analyze_command(const std::vector<std::string>& a, std::ostream& out, st
   long frame = -1;
   std::optional<double> time;
   pp::AnalysisOptions opt;
+  std::optional<double> from;  // the stress series' averaging window
   bool plots = true;
   auto bad = [&](const std::string& msg) {
     err << "grains analyze: " << msg << "\n" << kAnalyzeUsage;
@@ -108,6 +114,10 @@ int run_analyze_command(const std::vector<std::string>& a, std::ostream& out, st
       long k;
       if (!has_value || !parse_long(value(), k) || k < 10) return bad("--samples needs an integer >= 10");
       opt.sampling.samples_per_particle = static_cast<std::size_t>(k);
+    } else if (s == "--from") {
+      double t;
+      if (!has_value || !parse_number(value(), t)) return bad("--from needs a number of seconds");
+      from = t;
     } else if (s == "--no-plots") {
       plots = false;
     } else if (s == "-o" || s == "--out") {
@@ -122,9 +132,29 @@ int run_analyze_command(const std::vector<std::string>& a, std::ostream& out, st
     }
   }
   if (dir.empty()) return bad("missing the output folder of a run");
-  if (!fs::exists(fs::path(dir) / "particles.pvd"))
-    return err << "grains analyze: '" << dir << "' has no particles.pvd (not an output folder of 'grains run')\n", 2;
+  const bool frames = fs::exists(fs::path(dir) / "particles.pvd");
+  const bool series = fs::exists(fs::path(dir) / "stress.csv");
+  if (!frames && !series)
+    return err << "grains analyze: '" << dir
+               << "' has neither particles.pvd nor stress.csv (not an output folder of 'grains run')\n",
+           2;
   const fs::path dest = out_dir.empty() ? fs::path(dir) / "analysis" : fs::path(out_dir);
+  if (series) {
+    // The stress series of output.stress: means, errors, invariants, profiles.
+    try {
+      const auto ss = pp::read_stress_series(dir, from);
+      fs::create_directories(dest);
+      std::ofstream j(dest / "stress_series.json");
+      j << pp::stress_series_json(*ss);
+      if (!j) throw std::runtime_error("cannot write " + (dest / "stress_series.json").string());
+      out << pp::stress_series_summary(*ss) << "wrote stress_series.json to " << dest.string() << "\n";
+    } catch (const std::invalid_argument& e) {
+      return err << "grains analyze: " << e.what() << "\n", 2;
+    } catch (const std::exception& e) {
+      return err << "grains analyze: " << e.what() << "\n", 1;
+    }
+    if (!frames) return 0;
+  }
   pp::Frame f;
   try {
     f = time ? pp::read_frame_at_time(dir, *time) : pp::read_frame(dir, frame);
