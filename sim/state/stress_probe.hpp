@@ -44,8 +44,15 @@ struct StressProbe {
   /// first): it gets every contact too.
   StressProbe* next = nullptr;
 
+  /// Zeroed rows for `threads` threads; in place when their shape is kept
+  /// (the pressure servo resets every step: no allocation then).
   void reset(int threads) {
-    rows.assign(static_cast<std::size_t>(threads), std::vector<Sym>(static_cast<std::size_t>(1 + bins), Sym{}));
+    const auto t = static_cast<std::size_t>(threads), b = static_cast<std::size_t>(1 + bins);
+    if (rows.size() == t && (t == 0 || rows[0].size() == b)) {
+      for (auto& r : rows) std::fill(r.begin(), r.end(), Sym{});
+      return;
+    }
+    rows.assign(t, std::vector<Sym>(b, Sym{}));
   }
 
   /// The contact of force F on body i at x_i with branch b (from x_i - b to x_i).
