@@ -197,7 +197,7 @@ OutputStages add_output_stages(Simulation& s, const RunOptions& opt) {
   return {vtk, checkpoints};
 }
 
-RunSummary run(Simulation& s, const RunOptions& opt) {
+Runner::Runner(Simulation& s, const RunOptions& opt) : s_(s), opt_(opt) {
   const auto& comm = sim::Comm::world();
   {
     std::string err;
@@ -213,10 +213,9 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
   const bool talk = !opt.quiet && comm.root();
   for (const auto& w : s.c.scene.warnings)
     if (talk) *opt.log << w << "\n";
-  VtkOutput* vtk = outputs.vtk;
-  CheckpointStage* ck = outputs.checkpoints;
-  RunSummary r;
-  const auto t0 = std::chrono::steady_clock::now();
+  vtk_ = outputs.vtk;
+  ck_ = outputs.checkpoints;
+  t0_ = std::chrono::steady_clock::now();
   if (!opt.restart.empty()) {
     const auto x = read_checkpoint(opt.restart, s.scene);
     if (s.scene.exchange) {
@@ -231,11 +230,11 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
     if (x.case_effective != effective_case(s.c) && talk)
       *opt.log << "note: the case differs from the one " << opt.restart.string()
                << " was written with; continuing with the given case\n";
-    for (const auto& name : comm.root() ? remove_checkpoints_after(ck->dir(), s.scene.clock.step)
+    for (const auto& name : comm.root() ? remove_checkpoints_after(ck_->dir(), s.scene.clock.step)
                                         : std::vector<std::string>{})
       if (talk) *opt.log << "removed " << name << " (after the restart point)\n";
     s.pipeline.restart(s.scene, sim::RestartPoint{opt.restart.string(), x.frame_times, x.frame_steps});
-    r.restarted_from = opt.restart.string();
+    r_.restarted_from = opt.restart.string();
     if (talk)
       *opt.log << "restarting from " << opt.restart.string() << " at step " << s.scene.clock.step << " (t = "
                << s.scene.clock.time << " s)\n";
@@ -243,54 +242,92 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
     s.pipeline.initialize(s.scene);
     s.pipeline.start(s.scene);
   }
-  r.particles_start = s.scene.particles.n_owned();
-  double particle_steps = 0, pair_steps = 0;  // summed over steps: owned particles, list entries
-  double steps_run = 0;
-  {
-    SignalGuard guard(opt.handle_signals);
+  r_.particles_start = s.scene.particles.n_owned();
+}
+
+Runner::~Runner() = default;
+
+std::int64_t Runner::advance(std::int64_t target, const std::function<bool()>& stop_asked) {
+  if (finished_ || r_.signal != 0) throw std::logic_error("the run has ended: it cannot step further");
+  auto& s = s_;
+  const auto& comm = sim::Comm::world();
+  if (target > s.scene.clock.n_steps) {  // past the case's end: the end moves there
+    s.scene.clock.n_steps = target;
+    s.scene.clock.end_time = static_cast<double>(target) * s.scene.clock.dt;
+  }
+  const std::int64_t first = s.scene.clock.step;
+  SignalGuard guard(opt_.handle_signals);
+  try {
+    // Under MPI the ranks agree on a signal (mpirun forwards it to all,
+    // not necessarily at the same step), so they stop at the same step.
+    auto stop = [&comm] { return comm.parallel() ? comm.any(g_signal != 0) : g_signal != 0; };
+    while (s.scene.clock.step < target && !stop() && !(stop_asked && stop_asked())) {
+      particle_steps_ += static_cast<double>(s.scene.particles.n_owned());
+      s.pipeline.step(s.scene);
+      pair_steps_ += static_cast<double>(s.scene.neighbors.partner.size());
+      steps_run_ += 1;
+    }
+    if (stop()) {
+      r_.signal = g_signal != 0 ? static_cast<int>(g_signal) : SIGTERM;
+      std::string why;
+      const auto f = save_somewhere(*ck_, s, opt_, why);
+      if (f.empty()) throw OutputFailure("interrupted, and no checkpoint could be written: " + why);
+      r_.checkpoint = f.string();
+    }
+  } catch (const BlowUp&) {
+    throw;
+  } catch (const sim::IntegrationFailure&) {
+    throw;
+  } catch (const OutputFailure&) {
+    throw;
+  } catch (const std::exception& e) {
+    // An output failed (disk full, folder gone): the physics of this step is
+    // complete, so its state is saved wherever it still fits.
+    output_failed(e);
+  }
+  return s.scene.clock.step - first;
+}
+
+void Runner::output_failed(const std::exception& e) {
+  auto& s = s_;
+  std::string why;
+  const auto f = save_somewhere(*ck_, s, opt_, why);
+  std::ostringstream m;
+  m << e.what() << "\nthe run stopped at step " << s.scene.clock.step << " (t = " << s.scene.clock.time << " s); ";
+  if (f.empty())
+    m << "no checkpoint could be written (" << why << "); work since "
+      << (ck_->last().empty() ? std::string("the start") : ck_->last().string()) << " is lost";
+  else
+    m << "its state is saved in " << f.string() << "; once there is room, continue with: grains run " << s.c.path
+      << " --restart " << f.string() << " -o " << opt_.out_dir.string();
+  throw OutputFailure(m.str());
+}
+
+std::filesystem::path Runner::checkpoint() {
+  return ck_->save_now(s_.scene);
+}
+
+RunSummary Runner::finish() {
+  if (finished_) throw std::logic_error("the run has already finished");
+  finished_ = true;
+  auto& s = s_;
+  const auto& comm = sim::Comm::world();
+  auto& r = r_;
+  if (r.signal == 0) {
     try {
-      // Under MPI the ranks agree on a signal (mpirun forwards it to all,
-      // not necessarily at the same step), so they stop at the same step.
-      auto stop = [&comm] { return comm.parallel() ? comm.any(g_signal != 0) : g_signal != 0; };
-      while (s.scene.clock.step < s.scene.clock.n_steps && !stop()) {
-        particle_steps += static_cast<double>(s.scene.particles.n_owned());
-        s.pipeline.step(s.scene);
-        pair_steps += static_cast<double>(s.scene.neighbors.partner.size());
-        steps_run += 1;
-      }
-      if (stop()) {
-        r.signal = g_signal != 0 ? static_cast<int>(g_signal) : SIGTERM;
-        std::string why;
-        const auto f = save_somewhere(*ck, s, opt, why);
-        if (f.empty()) throw OutputFailure("interrupted, and no checkpoint could be written: " + why);
-        r.checkpoint = f.string();
-      } else {
-        s.pipeline.finish(s.scene);
-      }
+      s.pipeline.finish(s.scene);
     } catch (const BlowUp&) {
-      throw;
-    } catch (const sim::IntegrationFailure&) {
       throw;
     } catch (const OutputFailure&) {
       throw;
     } catch (const std::exception& e) {
-      // An output failed (disk full, folder gone): the physics of this step is
-      // complete, so its state is saved wherever it still fits.
-      std::string why;
-      const auto f = save_somewhere(*ck, s, opt, why);
-      std::ostringstream m;
-      m << e.what() << "\nthe run stopped at step " << s.scene.clock.step << " (t = " << s.scene.clock.time << " s); ";
-      if (f.empty())
-        m << "no checkpoint could be written (" << why << "); work since "
-          << (ck->last().empty() ? std::string("the start") : ck->last().string()) << " is lost";
-      else
-        m << "its state is saved in " << f.string() << "; once there is room, continue with: grains run " << s.c.path
-          << " --restart " << f.string() << " -o " << opt.out_dir.string();
-      throw OutputFailure(m.str());
+      output_failed(e);
     }
   }
-  if (r.checkpoint.empty() && !ck->last().empty()) r.checkpoint = ck->last().string();
-  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double particle_steps = particle_steps_, pair_steps = pair_steps_;
+  const double steps_run = steps_run_;
+  if (r.checkpoint.empty() && !ck_->last().empty()) r.checkpoint = ck_->last().string();
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
   r.steps = s.scene.clock.step;
   r.simulated_time = s.scene.clock.time;
   particle_steps = comm.sum(particle_steps);
@@ -301,11 +338,11 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
   r.lost_particles = comm.sum(s.scene.lost_particles);
   r.wall_seconds = comm.max(r.wall_seconds);
   r.neighbor_builds = s.scene.neighbors.stats().builds;
-  if (vtk) r.frames = vtk->frames();
+  if (vtk_) r.frames = vtk_->frames();
 
   const std::int64_t migrated = s.scene.exchange ? comm.sum(s.scene.exchange->stats().migrated) : 0;
   if (!comm.root()) return r;
-  std::ofstream j(opt.out_dir / "summary.json");
+  std::ofstream j(opt_.out_dir / "summary.json");
   j.precision(10);
   j << "{\n  \"grains_version\": \"" << kVersion << "\",\n  \"case\": \"" << s.c.path << "\",\n"
     << "  \"steps\": " << r.steps << ",\n  \"simulated_time_s\": " << r.simulated_time << ",\n"
@@ -341,8 +378,14 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
   }
   if (details) j << "\n  }";
   j << "\n}\n";
-  if (!j) throw std::runtime_error("could not write '" + (opt.out_dir / "summary.json").string() + "'");
+  if (!j) throw std::runtime_error("could not write '" + (opt_.out_dir / "summary.json").string() + "'");
   return r;
+}
+
+RunSummary run(Simulation& s, const RunOptions& opt) {
+  Runner runner(s, opt);
+  runner.advance(s.scene.clock.n_steps);
+  return runner.finish();
 }
 
 std::string describe(const Simulation& s) {

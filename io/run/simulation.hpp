@@ -1,7 +1,9 @@
 #pragma once
 // A runnable simulation assembled from a case: the scene, the physics
 // pipeline and the output stages the case asks for.
+#include <chrono>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <string>
 
@@ -54,14 +56,52 @@ struct OutputFailure : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+class VtkOutput;
+class CheckpointStage;
+
+/// A run taken in pieces (the Python module steps it in chunks): the
+/// constructor adds the output stages and writes the initial frame (or
+/// restores opt.restart); advance() steps; finish() ends it.
+class Runner {
+ public:
+  Runner(Simulation& sim, const RunOptions& opt);
+  Runner(const Runner&) = delete;
+  Runner& operator=(const Runner&) = delete;
+  ~Runner();
+
+  /// Steps until the clock reaches `step` (past the case's end, the end moves
+  /// there), a signal arrives (opt.handle_signals), or `stop` (if given,
+  /// asked before each step) says so. A signal saves a checkpoint and ends
+  /// the run. Returns the steps taken. An output failure saves the state
+  /// where it fits and throws OutputFailure.
+  std::int64_t advance(std::int64_t step, const std::function<bool()>& stop = {});
+  /// Writes a checkpoint of the current step now; returns its file.
+  std::filesystem::path checkpoint();
+  /// The stages' finish() (unless a signal ended the run) and summary.json;
+  /// once only.
+  RunSummary finish();
+  bool finished() const { return finished_; }
+  int signal() const { return r_.signal; }
+  CheckpointStage& checkpoints() { return *ck_; }
+
+ private:
+  /// An output failed: saves the state where it fits, throws OutputFailure saying where.
+  [[noreturn]] void output_failed(const std::exception& e);
+  Simulation& s_;
+  RunOptions opt_;
+  VtkOutput* vtk_ = nullptr;
+  CheckpointStage* ck_ = nullptr;
+  RunSummary r_;
+  std::chrono::steady_clock::time_point t0_;
+  double particle_steps_ = 0, pair_steps_ = 0, steps_run_ = 0;  // summed over steps: owned particles, list entries
+  bool finished_ = false;
+};
+
 /// Adds the output stages, writes the initial frame (or restores
 /// opt.restart), runs to the end time, writes summary.json into the output
 /// folder and returns the summary. A signal (opt.handle_signals) ends the
 /// run early with a checkpoint and summary.signal set.
 RunSummary run(Simulation& sim, const RunOptions& opt);
-
-class VtkOutput;
-class CheckpointStage;
 
 /// The output stages the run itself talks to.
 struct OutputStages {
