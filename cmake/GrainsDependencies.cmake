@@ -31,3 +31,13 @@ endif()
 if(GRAINS_BUILD_BENCH)
   find_package(benchmark REQUIRED)
 endif()
+
+if(GRAINS_PYTHON)
+  # Debian's interpreter (with python3-numpy), not one a pyenv or venv puts first on PATH.
+  if(NOT Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+    set(Python3_EXECUTABLE /usr/bin/python3)
+  endif()
+  find_package(Python3 REQUIRED COMPONENTS Interpreter Development.Module)
+  set(PYBIND11_FINDPYTHON ON)
+  find_package(pybind11 CONFIG REQUIRED)
+endif()

@@ -21,6 +21,7 @@
 #include <vtkXMLPolyDataWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
+#include "io/output/paraview_state.hpp"
 #include "sim/parallel/comm.hpp"
 
 #include "contact/sphere.hpp"
@@ -120,6 +121,10 @@ void VtkOutput::write_series(const sim::Scene& s) const {
   if (!sim::Comm::world().root()) return;
   const char* ext = sim::Comm::world().parallel() ? ".pvtu" : ".vtu";
   write_pvd("particles.pvd", "particles_", ext);
+  if (!state_written_) {  // once per run: the ParaView state beside the series
+    write_paraview_state(dir_);
+    state_written_ = true;
+  }
   if (s.walls.count() > 0) write_pvd("walls.pvd", "walls_", ".vtp");
   if (s.particles.fields().has(sim::Field::Body)) write_pvd("bodies.pvd", "bodies_", ext);
 }

@@ -52,6 +52,7 @@ class VtkOutput final : public sim::Stage {
   std::filesystem::path dir_;
   std::int64_t every_;
   std::int64_t last_step_ = -1;
+  mutable bool state_written_ = false;  // view.py (the ParaView state) written
   std::vector<double> times_;
   std::vector<std::int64_t> steps_;
 };
