@@ -285,6 +285,13 @@ struct PySim {
   bool closed = false;
   py::object summary = py::none();
 
+  // ARKODE keeps the state in its own vector between steps (it reads the
+  // store again only when the neighbour lists are rebuilt).
+  static constexpr const char* kArkodeState =
+      "the ARKODE integrator holds the grains' state in its own vector between steps, so it cannot be written "
+      "from Python; use time.integrator: verlet for a scene a script edits";
+  bool arkode() const { return sim->c.scene.integrator == sim::Integrator::Arkode; }
+
   void check_open() const {
     if (closed) throw std::logic_error("the simulation is closed: make a new one (or continue from its checkpoint)");
   }
@@ -353,7 +360,7 @@ struct PySim {
     if (f.size(p) == 0) throw py::attribute_error(std::string("no ") + f.name + ": " + f.absent);
     const bool clump_ball = !p.body.empty() && (field == "positions" || field == "velocities" ||
                                                 field == "angular_velocities");
-    const bool writable = f.writable && writable_request && !clump_ball;
+    const bool writable = f.writable && writable_request && !clump_ball && !arkode();
     const auto n = static_cast<py::ssize_t>(p.n_owned());
     std::vector<py::ssize_t> shape{n}, strides;
     py::dtype dt = f.kind == 'd' ? py::dtype::of<double>() : f.kind == 'q' ? py::dtype::of<std::int64_t>()
@@ -379,6 +386,7 @@ struct PySim {
     auto& p = scene().particles;
     if (f.size(p) == 0) throw py::attribute_error(std::string("no ") + f.name + ": " + f.absent);
     if (!f.writable) throw py::value_error(std::string(f.name) + " cannot be written");
+    if (arkode()) throw py::value_error(std::string(f.name) + ": " + kArkodeState);
     if (!p.body.empty())
       throw py::value_error(std::string(f.name) + " of clump balls follow their bodies and cannot be written");
     py::array in = py::array::ensure(values);
@@ -541,6 +549,9 @@ struct PySim {
   void set_wall_velocity(const std::string& name, const sim::Vec3& v) {
     auto& sc = scene();
     if (!v.allFinite()) throw py::value_error("set_wall_velocity: the velocity must be finite");
+    if (arkode())
+      throw py::value_error("set_wall_velocity: the ARKODE integrator moves the walls by the motion they had at "
+                            "its start; use time.integrator: verlet for a scene a script edits");
     const auto stages = sim->pipeline.stage_names();
     const bool moves = std::any_of(stages.begin(), stages.end(), [](const std::string& n) {
       return n.size() >= 10 && n.compare(n.size() - 10, 10, "walls.move") == 0;  // ("drift: walls.move")

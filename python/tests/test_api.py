@@ -410,3 +410,17 @@ def test_wall_velocity_between_stages(pour, out, tmp_path):
     with grains.Simulation(still, out=tmp_path / "c") as sim:
         with pytest.raises(ValueError, match="wall-motion stage"):
             sim.set_wall_velocity("floor", (0, 0, 0.01))
+
+
+def test_arkode_scenes_are_read_only(pour, out):
+    pour["time"]["integrator"] = "arkode"
+    pour["particles"][0]["count"] = 50
+    with grains.Simulation(pour, out=out) as sim:
+        sim.step(5)
+        assert not sim.velocities.flags.writeable
+        with pytest.raises(ValueError, match="ARKODE"):
+            sim.velocities = np.zeros((50, 3))
+        with pytest.raises(ValueError, match="ARKODE"):
+            sim.set_wall_velocity("floor", (0, 0, 0.01))
+        sim.step(5)
+        assert sim.step_count == 10
