@@ -3,6 +3,7 @@
 // store, checkpoints. docs/python.md is the user's guide; grains/__init__.py
 // adds the pure-Python helpers.
 #include <pybind11/functional.h>
+#include <pybind11/iostream.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -581,6 +582,7 @@ struct PySim {
   // Steps to `target`, asking Python for a pending signal (Ctrl-C) now and then.
   std::int64_t advance_to(std::int64_t target) {
     before_change();
+    py::scoped_estream_redirect to_python;  // progress lines to sys.stderr (a notebook shows them)
     bool interrupted = false;
     std::int64_t k = 0;
     auto stop = [&] {
@@ -599,6 +601,7 @@ struct PySim {
     validate_writes();
     detach_views();
     closed = true;
+    py::scoped_estream_redirect to_python;
     const auto r = runner->finish();
     py::dict d;
     d["steps"] = r.steps;
@@ -739,6 +742,7 @@ Simulation(case, out="out", restart=None, progress=None)
              }
              s->opt.quiet = !show;
              s->sim = std::make_unique<io::Simulation>(io::make_simulation(c.c));
+             py::scoped_estream_redirect to_python;  // (the set-up's warnings)
              s->runner = std::make_unique<io::Runner>(*s->sim, s->opt);
              return s;
            }),

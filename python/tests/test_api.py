@@ -424,3 +424,14 @@ def test_arkode_scenes_are_read_only(pour, out):
             sim.set_wall_velocity("floor", (0, 0, 0.01))
         sim.step(5)
         assert sim.step_count == 10
+
+
+def test_progress_goes_to_python_stderr(pour, out, capsys):
+    pour["output"]["progress"] = True
+    with grains.Simulation(pour, out=out, progress=True) as sim:
+        sim.run()
+    err = capsys.readouterr().err
+    assert "done: step 500/500" in err  # the closing line, through sys.stderr (a notebook shows it)
+    with grains.Simulation(pour, out=out, progress=False) as sim:
+        sim.run()
+    assert "step" not in capsys.readouterr().err
