@@ -31,6 +31,7 @@
 #include "sim/integrate/arkode.hpp"
 #include "sim/neighbor/neighbor_stage.hpp"
 #include "sim/parallel/comm.hpp"
+#include "sim/parallel/exchange.hpp"
 #include "sim/scene/build_scene.hpp"
 
 namespace py = pybind11;
@@ -449,9 +450,10 @@ struct PySim {
     return sim::Comm::world().sum(n);
   }
 
-  // Adds spheres or ellipsoids of particle set `set` (rank 0 places them, the
-  // exchange hands them to their owners); collective. Refused when one
-  // overlaps a grain or another new one, or lies outside the domain.
+  // Adds grains of particle set `set` (spheres, ellipsoids or clumps of
+  // bounding radius r), each on the rank that owns its centre, as the
+  // insertion stage does; collective. Refused when one overlaps a grain or
+  // another new one (bounding spheres), or lies outside the domain.
   std::int64_t insert(const std::vector<sim::Vec3>& x, const std::vector<double>& r, const std::vector<sim::Vec3>& v,
                       const std::vector<sim::Quat>& q, std::size_t set_index) {
     auto& sc = scene();
@@ -461,14 +463,17 @@ struct PySim {
       throw py::value_error("insert: the case has " + std::to_string(cfg.sets.size()) + " particle set(s); set=" +
                             std::to_string(set_index) + " is not one of them");
     const auto& set = cfg.sets[set_index];
-    if (set.shape.kind == sim::ShapeConfig::Kind::Clump)
-      throw py::value_error("insert: set '" + set.name + "' is made of clumps; grains can insert spheres and "
-                            "ellipsoids from Python");
+    const bool clump = set.shape.kind == sim::ShapeConfig::Kind::Clump;
     auto& p = sc.particles;
     const double bound = set.shape.kind == sim::ShapeConfig::Kind::Ellipsoid ? set.shape.axes_rel.maxCoeff() : 1.0;
     std::string err;
     for (std::size_t k = 0; k < x.size() && err.empty(); ++k) {
-      if (!sc.domain.contains(x[k])) {
+      bool inside = sc.domain.contains(x[k]);
+      if (clump)  // its balls: within its bounding sphere
+        for (int d = 0; d < 3; ++d)
+          inside = inside && (sc.domain.periodic[d] ||
+                              (x[k][d] - r[k] >= sc.domain.lo[d] && x[k][d] + r[k] <= sc.domain.hi[d]));
+      if (!inside) {
         err = "insert: row " + std::to_string(k) + " lies outside the domain";
         break;
       }
@@ -482,17 +487,24 @@ struct PySim {
           err = "insert: rows " + std::to_string(j) + " and " + std::to_string(k) + " overlap; nothing was inserted";
     }
     if (comm.agree_error(err)) throw py::value_error(err);
-    std::int64_t gid = 0;
+    std::int64_t gid = 0, body = 0;
     for (std::size_t i = 0; i < p.n_owned(); ++i) gid = std::max(gid, p.id[i] + 1);
+    for (auto b : sc.bodies.id) body = std::max(body, b + 1);
     gid = comm.max(gid);
+    body = comm.max(body);
+    const std::int64_t balls = clump ? static_cast<std::int64_t>(set.shape.clump->radii.size()) : 1;
     p.clear_ghosts();
-    if (comm.root()) {
-      const bool ellipsoid_fields = p.fields().has(sim::Field::SemiAxes);
-      for (std::size_t k = 0; k < x.size(); ++k) {
+    const bool ellipsoid_fields = p.fields().has(sim::Field::SemiAxes);
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      if (!sc.exchange || sc.exchange->decomposition().owner(x[k]) == comm.rank()) {
         const auto before = p.n_owned();
-        sim::add_grain(sc, set, x[k], r[k], q[k], gid, -1, ellipsoid_fields, "an inserted grain");
+        std::int64_t id = gid;
+        sim::add_grain(sc, set, x[k], r[k], q[k], id, clump ? body : -1, ellipsoid_fields, "an inserted grain");
         for (auto i = before; i < p.n_owned(); ++i) p.v[i] = v[k];
+        if (clump) sc.bodies.v.back() = v[k];
       }
+      gid += balls;
+      if (clump) ++body;
     }
     rebuild();
     return static_cast<std::int64_t>(x.size());

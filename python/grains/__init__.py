@@ -119,9 +119,9 @@ class Simulation(_core.Simulation):
         return self._remove(np.asarray(mask))
 
     def insert(self, positions, radii, velocities=None, orientations=None, set=0):
-        """Adds spheres (or ellipsoids, of the set's aspect ratios) of the
-        case's particle set number `set`: positions (k, 3), bounding radii
-        (k,), velocities (k, 3; default zero), orientations (k, 4)
+        """Adds grains of the case's particle set number `set` (spheres,
+        ellipsoids of the set's aspect ratios, or clumps of its shape):
+        positions (k, 3), bounding radii (k,), velocities (k, 3; default zero), orientations (k, 4)
         quaternions (x, y, z, w; default identity). Refused (ValueError,
         nothing inserted) when a grain overlaps another or lies outside the
         domain. Under MPI every rank calls it with the same grains. Returns

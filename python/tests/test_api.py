@@ -435,3 +435,30 @@ def test_progress_goes_to_python_stderr(pour, out, capsys):
     with grains.Simulation(pour, out=out, progress=False) as sim:
         sim.run()
     assert "step" not in capsys.readouterr().err
+
+
+def test_insert_and_remove_clumps(tmp_path):
+    case = grains.Case(ROOT / "cases/pour_clumps/case.yaml",
+                       set={"particles.0.count": 10, "time.end": 0.01, "output.vtk": False})
+    with grains.Simulation(case, out=tmp_path / "c") as sim:
+        balls = sim.n_particles
+        per = balls // 10
+        bodies = set(sim.body_ids.tolist())
+        assert len(bodies) == 10
+        sim.step(2)
+        assert sim.insert([[0.005, 0.005, 0.0585]], 0.0008, velocities=[[0, 0, -0.2]]) == 1
+        assert sim.n_particles == balls + per
+        new = sim.body_ids == max(bodies) + 1
+        assert new.sum() == per
+        np.testing.assert_allclose(sim.velocities[new], [[0, 0, -0.2]] * per)
+        sim.step(10)
+        assert sim.velocities[new, 2].mean() < -0.2  # it falls as one body
+        with pytest.raises(ValueError, match="outside"):
+            sim.insert([[0.002, 0.002, 0.0605]], 0.0008)  # its bounding sphere crosses the domain's top (0.061)
+        # Removing one ball of a clump removes the clump.
+        first = np.flatnonzero(sim.body_ids == sim.body_ids[0])
+        mask = np.zeros(sim.n_particles, dtype=bool)
+        mask[first[0]] = True
+        assert sim.remove(mask=mask) == per
+        assert sim.n_particles == balls
+        sim.step(5)
