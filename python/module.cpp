@@ -28,6 +28,7 @@
 #include "io/output/progress.hpp"
 #include "io/run/simulation.hpp"
 #include "postprocess/analysis.hpp"
+#include "sim/neighbor/whole_clumps.hpp"
 #include "sim/integrate/arkode.hpp"
 #include "sim/neighbor/neighbor_stage.hpp"
 #include "sim/parallel/comm.hpp"
@@ -382,7 +383,7 @@ struct PySim {
     return a;
   }
 
-  void write(py::object self, const std::string& field, py::handle values) {
+  void write(const std::string& field, py::handle values) {
     check_open();
     const FieldRef& f = field_ref(field);
     auto& p = scene().particles;
@@ -419,7 +420,6 @@ struct PySim {
     auto* out = static_cast<double*>(f.data(p));
     for (py::ssize_t i = 0; i < n; ++i)
       for (int c = 0; c < f.width; ++c) out[i * f.width + c] = r(i, c);
-    (void)self;
   }
 
   // Grains out or in: the lists and ghosts are rebuilt at once (the
@@ -433,15 +433,7 @@ struct PySim {
     auto& sc = scene();
     auto& p = sc.particles;
     std::vector<char> out(flag.begin(), flag.end());
-    if (p.fields().has(sim::Field::Body)) {
-      // A clump goes as a whole when any of its balls is picked.
-      std::vector<char> gone(sc.bodies.size(), 0);
-      for (std::size_t i = 0; i < out.size(); ++i)
-        if (out[i] && p.body[i] >= 0) gone[static_cast<std::size_t>(sc.bodies.index_of(p.body[i]))] = 1;
-      for (std::size_t i = 0; i < out.size(); ++i)
-        if (p.body[i] >= 0 && gone[static_cast<std::size_t>(sc.bodies.index_of(p.body[i]))]) out[i] = 1;
-      sc.bodies.remove_if(gone);
-    }
+    sim::flag_whole_clumps(sc, out);  // a clump goes as a whole when any of its balls is picked
     std::int64_t n = 0;
     for (char c : out) n += c ? 1 : 0;
     p.clear_ghosts();
@@ -862,7 +854,7 @@ Simulation(case, out="out", restart=None, progress=None)
            }, py::arg("name"), py::arg("writable") = true,
            "A numpy view of a per-particle field of this rank's grains (no copy); see docs/python.md.")
       .def("set_field", [](py::object self, const std::string& name, py::object values) {
-             self.cast<PySim&>().write(self, name, values);
+             self.cast<PySim&>().write(name, values);
            }, py::arg("name"), py::arg("values"),
            "Writes a field from an array, checked (dtype, shape, finite, inside the domain) before anything is "
            "written.")

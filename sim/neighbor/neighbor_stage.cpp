@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "sim/neighbor/whole_clumps.hpp"
 #include "sim/parallel/exchange.hpp"
 
 namespace grains::sim {
@@ -22,18 +23,8 @@ void remove_lost(Scene& s, std::vector<double>& per_particle) {
       any = true;
       ++s.lost_particles;
     }
-  if (any && p.fields().has(Field::Body)) {
-    std::vector<char> gone(s.bodies.size(), 0);
-    for (std::size_t i = 0; i < p.n_owned(); ++i)
-      if (out[i] && p.body[i] >= 0) gone[static_cast<std::size_t>(s.bodies.index_of(p.body[i]))] = 1;
-    for (std::size_t i = 0; i < p.n_owned(); ++i)
-      if (!out[i] && p.body[i] >= 0 && gone[static_cast<std::size_t>(s.bodies.index_of(p.body[i]))]) {
-        out[i] = 1;
-        ++s.lost_particles;
-      }
-    s.bodies.remove_if(gone);
-  }
   if (!any) return;
+  s.lost_particles += flag_whole_clumps(s, out);
   p.remove_if(out);
   std::size_t m = 0;
   for (std::size_t i = 0; i < per_particle.size() && i < out.size(); ++i)
@@ -42,6 +33,22 @@ void remove_lost(Scene& s, std::vector<double>& per_particle) {
 }
 
 }  // namespace
+
+std::size_t flag_whole_clumps(Scene& s, std::vector<char>& out) {
+  auto& p = s.particles;
+  if (!p.fields().has(Field::Body)) return 0;
+  std::vector<char> gone(s.bodies.size(), 0);
+  for (std::size_t i = 0; i < out.size(); ++i)
+    if (out[i] && p.body[i] >= 0) gone[static_cast<std::size_t>(s.bodies.index_of(p.body[i]))] = 1;
+  std::size_t added = 0;
+  for (std::size_t i = 0; i < out.size(); ++i)
+    if (!out[i] && p.body[i] >= 0 && gone[static_cast<std::size_t>(s.bodies.index_of(p.body[i]))]) {
+      out[i] = 1;
+      ++added;
+    }
+  s.bodies.remove_if(gone);
+  return added;
+}
 
 void NeighborStage::run(Scene& s) {
   auto& p = s.particles;
