@@ -16,8 +16,10 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <omp.h>
@@ -551,35 +553,64 @@ struct PySim {
   // A plane's or a cylinder's constant velocity, between steps. The lists
   // are rebuilt (their trigger bounds a wall's travel by its speed since
   // the last build, which a slower wall would no longer bound).
-  void set_wall_velocity(const std::string& name, const sim::Vec3& v) {
+  // A wall's motion between steps: a plane's or a cylinder's velocity; a
+  // mesh wall's velocity, rotation speed and vibration, continued from its
+  // pose now (MeshWall::rebase).
+  struct WallMotion {
+    std::optional<sim::Vec3> velocity;
+    std::optional<double> angular_velocity, vibration_frequency;
+    std::optional<sim::Vec3> vibration_amplitude;
+  };
+  void set_wall_motion(const std::string& name, const WallMotion& m) {
     auto& sc = scene();
-    if (!v.allFinite()) throw py::value_error("set_wall_velocity: the velocity must be finite");
+    const auto finite = [](const auto& o) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(*o)>, double>)
+        return !o || std::isfinite(*o);
+      else
+        return !o || o->allFinite();
+    };
+    if (!finite(m.velocity) || !finite(m.vibration_amplitude) || !finite(m.angular_velocity) ||
+        !finite(m.vibration_frequency))
+      throw py::value_error("set_wall_motion: the values must be finite");
+    if (m.vibration_frequency && *m.vibration_frequency < 0)
+      throw py::value_error("set_wall_motion: vibration_frequency must be >= 0 (Hz)");
     if (arkode())
-      throw py::value_error("set_wall_velocity: the ARKODE integrator moves the walls by the motion they had at "
+      throw py::value_error("set_wall_motion: the ARKODE integrator moves the walls by the motion they had at "
                             "its start; use time.integrator: verlet for a scene a script edits");
     const auto stages = sim->pipeline.stage_names();
     const bool moves = std::any_of(stages.begin(), stages.end(), [](const std::string& n) {
       return n.size() >= 10 && n.compare(n.size() - 10, 10, "walls.move") == 0;  // ("drift: walls.move")
     });
+    const bool still = (!m.velocity || m.velocity->squaredNorm() == 0) && m.angular_velocity.value_or(0) == 0 &&
+                       (!m.vibration_amplitude || m.vibration_amplitude->squaredNorm() == 0 ||
+                        m.vibration_frequency.value_or(1) == 0);
     bool found = false;
     std::string why, names;
     sc.walls.for_each([&](auto& w, std::size_t) {
       names += (names.empty() ? "" : ", ") + w.name;
       if (w.name != name) return;
       found = true;
-      if constexpr (requires { w.advance(0.0); })
-        why = "wall '" + name + "' is a mesh: it moves by its case's schedule (velocity, vibration, rotation from "
-              "`start` over `ramp`), not by a velocity set between steps";
-      else if (w.control.active())
+      if (w.control.active())
         why = "wall '" + name + "' is controlled (a servo or a strain rate): its control sets its velocity";
-      else if (!moves && v.squaredNorm() > 0)
+      else if (!moves && !still)
         why = "no wall of the case moves, so its step has no wall-motion stage (an absent effect runs no code); "
-              "give a wall a velocity in the case to change velocities between stages";
-      else
-        w.velocity = v;
+              "give a wall a motion in the case to change motions between stages";
+      else if constexpr (requires { w.rebase(0.0, sim::Vec3{}, 0.0); }) {
+        const sim::Vec3 offset = w.offset;  // the pose now, kept
+        const double angle = w.angle;
+        if (m.velocity) w.velocity = *m.velocity;
+        if (m.angular_velocity) w.angular_velocity = *m.angular_velocity;
+        if (m.vibration_amplitude) w.vibration_amplitude = *m.vibration_amplitude;
+        if (m.vibration_frequency) w.vibration_frequency = *m.vibration_frequency;
+        w.rebase(w.motion_time, offset, angle);
+      } else if (m.angular_velocity || m.vibration_amplitude || m.vibration_frequency)
+        why = "wall '" + name + "' is a " + std::string(std::decay_t<decltype(w)>::kind) +
+              ": only its velocity can be set (rotation and vibration are a mesh wall's)";
+      else if (m.velocity)
+        w.velocity = *m.velocity;
     });
     if (!found) throw py::key_error("no wall '" + name + "' (the case has: " + names + ")");
-    if (!why.empty()) throw py::value_error("set_wall_velocity: " + why);
+    if (!why.empty()) throw py::value_error("set_wall_motion: " + why);
     rebuild();
   }
 
@@ -622,6 +653,11 @@ struct PySim {
     return summary;
   }
 };
+
+sim::Vec3 vec3(const char* what, const std::vector<double>& v) {
+  if (v.size() != 3) throw py::value_error(std::string(what) + ": three components");
+  return {v[0], v[1], v[2]};
+}
 
 std::int64_t steps_for(const sim::Clock& c, double t) {
   if (!std::isfinite(t)) throw py::value_error("the time must be finite");
@@ -803,12 +839,30 @@ Simulation(case, out="out", restart=None, progress=None)
            }, py::arg("name"),
            "Changes a material's friction, rolling_friction, restitution or cohesion between steps, e.g. "
            "sim.set_material('glass', friction=0.3); the pair table is mixed again.")
-      .def("set_wall_velocity", [](PySim& s, const std::string& name, std::vector<double> v) {
+      .def("set_wall_velocity", [](PySim& s, const std::string& name, const std::vector<double>& v) {
              s.before_change();
-             if (v.size() != 3) throw py::value_error("set_wall_velocity: three components (m/s)");
-             s.set_wall_velocity(name, sim::Vec3(v[0], v[1], v[2]));
+             PySim::WallMotion m;
+             m.velocity = vec3("velocity", v);
+             s.set_wall_motion(name, m);
            }, py::arg("name"), py::arg("velocity"),
-           "Sets a plane's or a cylinder's constant velocity (m/s) between steps, by the wall's name.")
+           "Sets a wall's velocity (m/s) between steps, by the wall's name: set_wall_motion(name, velocity=v).")
+      .def("set_wall_motion", [](PySim& s, const std::string& name, std::optional<std::vector<double>> v,
+                                 std::optional<double> omega, std::optional<double> rpm,
+                                 std::optional<std::vector<double>> amplitude, std::optional<double> frequency) {
+             s.before_change();
+             if (omega && rpm) throw py::value_error("set_wall_motion: give angular_velocity (rad/s) or rpm, not both");
+             if (rpm) omega = *rpm * 2 * M_PI / 60;
+             PySim::WallMotion m;
+             m.angular_velocity = omega, m.vibration_frequency = frequency;
+             if (v) m.velocity = vec3("velocity", *v);
+             if (amplitude) m.vibration_amplitude = vec3("vibration_amplitude", *amplitude);
+             s.set_wall_motion(name, m);
+           }, py::arg("name"), py::kw_only(), py::arg("velocity") = py::none(),
+           py::arg("angular_velocity") = py::none(), py::arg("rpm") = py::none(),
+           py::arg("vibration_amplitude") = py::none(), py::arg("vibration_frequency") = py::none(),
+           "Changes a wall's motion between steps. A plane or a cylinder: its velocity (m/s). A mesh wall: its "
+           "velocity, its rotation speed about its axis (angular_velocity in rad/s, or rpm) and its vibration; it "
+           "continues from its pose now (no jump), keeping its case's start and ramp. Values not given stay.")
       .def("checkpoint", [](PySim& s) {
              s.before_change();
              return s.runner->checkpoint().string();

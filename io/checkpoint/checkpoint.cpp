@@ -103,6 +103,12 @@ std::string wall_position_dataset() {
   return std::string("/walls/") + K::kind + "_" + K::position_name;
 }
 
+// A mesh wall's motion in a checkpoint (write_walls): rebased, base time,
+// base offset (3), base angle, base vibration (3), angle, velocity (3),
+// angular velocity, vibration amplitude (3) and frequency, start, ramp,
+// axis (3), axis point (3).
+constexpr int kMeshMotionWidth = 26;
+
 // Each kind's moving reference points and velocities: what a restart needs
 // besides the case (the walls' shape comes from the case).
 void write_walls(const h5::File& f, const sim::Walls& walls) {
@@ -130,6 +136,26 @@ void write_walls(const h5::File& f, const sim::Walls& walls) {
       for (const auto& w : walls.of<K>()) clock.push_back(w.motion_time), tris.push_back(static_cast<std::int64_t>(w.surface->triangles()));
       f.write_vector(std::string("/walls/") + K::kind + "_motion_time", clock, 1, "s");
       f.write_vector(std::string("/walls/") + K::kind + "_triangles", tris, 1, "");
+    }
+    if constexpr (requires(K k) { k.rebase(0.0, sim::Vec3{}, 0.0); }) {
+      // The motion the pose came from (a script may have changed it): a
+      // restart with the same motion continues bitwise, one with another
+      // motion (an edited case) continues from this pose (read_walls).
+      std::vector<double> m;
+      for (const auto& w : walls.of<K>()) {
+        m.insert(m.end(), {w.rebased ? 1.0 : 0.0, w.base_time});
+        m.insert(m.end(), w.base_offset.data(), w.base_offset.data() + 3);
+        m.push_back(w.base_angle);
+        m.insert(m.end(), w.base_vibration.data(), w.base_vibration.data() + 3);
+        m.push_back(w.angle);
+        m.insert(m.end(), w.velocity.data(), w.velocity.data() + 3);
+        m.push_back(w.angular_velocity);
+        m.insert(m.end(), w.vibration_amplitude.data(), w.vibration_amplitude.data() + 3);
+        m.insert(m.end(), {w.vibration_frequency, w.start, w.ramp});
+        m.insert(m.end(), w.axis.data(), w.axis.data() + 3);
+        m.insert(m.end(), w.axis_point.data(), w.axis_point.data() + 3);
+      }
+      f.write_vector(std::string("/walls/") + K::kind + "_motion", m, kMeshMotionWidth, "");
     }
   });
 }
@@ -435,6 +461,32 @@ void read_growth(const h5::File& f, sim::GrowthServo& g) {
   g.phase_target = f.read_scalar<double>("/growth/phase_target");
 }
 
+// A mesh wall's motion from its checkpoint row (write_walls) at motion time
+// t. The same motion as the case's: as it was, so the run continues
+// bitwise. Another (the case was edited, or a script had changed it): the
+// case's motion from the checkpoint's pose on. The axis cannot change.
+template <class W>
+void restore_motion(const h5::File& f, W& w, const double* r, double t) {
+  const sim::Vec3 axis(r[20], r[21], r[22]), axis_point(r[23], r[24], r[25]);
+  if (axis != w.axis || axis_point != w.axis_point)
+    throw CheckpointError(f.path() + ": mesh wall '" + w.name + "' turned about another axis (axis, axis_point); a " +
+                          "restart keeps a mesh wall's rotation axis");
+  const bool same = w.velocity == sim::Vec3(r[10], r[11], r[12]) && w.angular_velocity == r[13] &&
+                    w.vibration_amplitude == sim::Vec3(r[14], r[15], r[16]) && w.vibration_frequency == r[17] &&
+                    w.start == r[18] && w.ramp == r[19];
+  if (same) {
+    w.rebased = r[0] != 0, w.base_time = r[1];
+    w.base_offset = sim::Vec3(r[2], r[3], r[4]), w.base_angle = r[5];
+    w.base_vibration = sim::Vec3(r[6], r[7], r[8]);
+    w.place(t);
+    return;
+  }
+  // The offset read is the pose's, with the controlled travel on top (place() adds it).
+  sim::Vec3 offset = w.position();
+  if (w.control.active()) offset -= w.control.travel * w.control.direction;
+  w.rebase(t, offset, r[9]);
+}
+
 void read_walls(const h5::File& f, sim::Walls& walls) {
   sim::for_each_type(sim::WallKinds{}, [&]<class K>() {
     auto& ws = walls.of<K>();  // the count is checked in check_compatible
@@ -462,7 +514,18 @@ void read_walls(const h5::File& f, sim::Walls& walls) {
     if constexpr (requires(K k) { k.motion_time; k.place(0.0); }) {
       std::vector<double> clock;
       if (!ws.empty()) f.read_vector(std::string("/walls/") + K::kind + "_motion_time", clock, ws.size(), 1);
-      for (std::size_t w = 0; w < ws.size(); ++w) ws[w].place(clock[w]);
+      // Checkpoints before 2026-11-27 have no motion: the case's, from motion time 0.
+      const std::string motion = std::string("/walls/") + K::kind + "_motion";
+      std::vector<double> m;
+      if (!ws.empty() && f.exists(motion)) f.read_vector(motion, m, ws.size(), kMeshMotionWidth);
+      for (std::size_t w = 0; w < ws.size(); ++w) {
+        if (m.empty()) {
+          ws[w].place(clock[w]);
+          continue;
+        }
+        if constexpr (requires(K k) { k.rebase(0.0, sim::Vec3{}, 0.0); })
+          restore_motion(f, ws[w], &m[kMeshMotionWidth * w], clock[w]);
+      }
     }
   });
 }

@@ -462,3 +462,101 @@ def test_insert_and_remove_clumps(tmp_path):
         assert sim.remove(mask=mask) == per
         assert sim.n_particles == balls
         sim.step(5)
+
+
+# ------------------------------------------------------ mesh-wall motion
+
+def drum_case(**edits):
+    """The rotating drum of cases/, small: 100 beads, spinning from t = 0 at 120 rpm."""
+    sets = {"particles.0.count": 100, "walls.0.start": 0.0, "walls.0.ramp": 0.0, "walls.0.rpm": 120.0,
+            "time.end": 0.02, "output.every": 0.005, "output.progress": False}
+    sets.update(edits)
+    return grains.Case(ROOT / "cases/rotating_drum/case.yaml", set=sets)
+
+
+def turned(p0, p1):
+    """The angle about +y (through the origin, the drum's axis) that takes the vertices p0 to p1."""
+    x0, z0, x1, z1 = p0[:, 0], p0[:, 2], p1[:, 0], p1[:, 2]
+    keep = x0 * x0 + z0 * z0 > 1e-6
+    a = np.arctan2(z0[keep] * x1[keep] - x0[keep] * z1[keep], x0[keep] * x1[keep] + z0[keep] * z1[keep])
+    assert np.ptp(a) < 1e-5  # a rigid rotation
+    return float(np.mean(a))
+
+
+def drum_angles(out, ref=None):
+    """(time, angle) of the drum in each walls frame, from the pose `ref` (default: the first frame's)."""
+    frames = grains.output.read_frames(out, "walls")
+    ref = frames[0].points if ref is None else ref
+    return [(f.time, turned(ref, f.points)) for f in frames]
+
+
+def test_mesh_wall_motion_between_stages(out):
+    w1, w2 = 120 * 2 * np.pi / 60, -3.0
+    with grains.Simulation(drum_case(), out=out) as sim:
+        sim.run(until=0.01)
+        t1 = sim.time
+        sim.set_wall_motion("drum", angular_velocity=w2)
+        sim.run(until=0.02)
+    angles = drum_angles(out)
+    assert len(angles) >= 4 and angles[0] == (0.0, 0.0)
+    # The drum turned at w1 until t1, then at w2 from the angle it had: no jump.
+    for t, a in angles:
+        assert a == pytest.approx(w1 * min(t, t1) + w2 * max(0.0, t - t1), abs=1e-5), t
+    assert angles[-1][0] == pytest.approx(0.02, abs=1e-4)
+    with grains.Simulation(drum_case(), out=out.parent / "b") as sim:
+        with pytest.raises(ValueError, match="not both"):
+            sim.set_wall_motion("drum", angular_velocity=1.0, rpm=10)
+        with pytest.raises(ValueError, match="finite"):
+            sim.set_wall_motion("drum", velocity=(0, float("inf"), 0))
+        with pytest.raises(ValueError, match="three components"):
+            sim.set_wall_motion("drum", vibration_amplitude=(0, 1))
+        with pytest.raises(ValueError, match=">= 0"):
+            sim.set_wall_motion("drum", vibration_frequency=-1)
+        assert sim.step_count == 0
+        # A translation and a vibration too: the pose stays continuous.
+        sim.step(100)
+        sim.set_wall_motion("drum", velocity=(0, 0, 0.01), vibration_amplitude=(0.001, 0, 0), vibration_frequency=50)
+        sim.step(100)
+
+
+def test_plane_walls_do_not_rotate(pour, out):
+    pour["walls"][1]["velocity"] = [0.001, 0, 0]
+    with grains.Simulation(pour, out=out) as sim:
+        with pytest.raises(ValueError, match="only its velocity"):
+            sim.set_wall_motion("floor", angular_velocity=1.0)
+        sim.set_wall_motion("floor", velocity=(0, 0, 0.01))
+
+
+def positions_by_id(sim):
+    order = np.argsort(sim.ids)
+    return sim.positions[order].copy(), sim.velocities[order].copy()
+
+
+def test_mesh_wall_motion_survives_a_restart(tmp_path):
+    w1, w2 = 120 * 2 * np.pi / 60, -3.0
+    with grains.Simulation(drum_case(), out=tmp_path / "a") as sim:
+        sim.run(until=0.01)
+        t1 = sim.time
+        sim.set_wall_motion("drum", angular_velocity=w2)
+        sim.run(until=0.015)
+        ck, t_ck = sim.checkpoint(), sim.time
+        sim.run(until=0.02)
+        xa, va = positions_by_id(sim)
+    # The case edited to the motion the script set: the run continues bitwise.
+    with grains.Simulation(drum_case(**{"walls.0.rpm": w2 * 60 / (2 * np.pi)}), out=tmp_path / "b", restart=ck) as sim:
+        assert sim.time == t_ck
+        sim.run(until=0.02)
+        xb, vb = positions_by_id(sim)
+    np.testing.assert_array_equal(xa, xb)
+    np.testing.assert_array_equal(va, vb)
+    # The original case: its motion again, from the checkpoint's pose.
+    with grains.Simulation(drum_case(), out=tmp_path / "c", restart=ck) as sim:
+        sim.run(until=0.02)
+    at_rest = grains.output.read_frames(tmp_path / "a", "walls")[0].points  # the pose at time 0
+    angles = drum_angles(tmp_path / "c", ref=at_rest)
+    assert len(angles) >= 1 and angles[0][0] >= t_ck
+    for t, a in angles:  # from the pose it had, at the case's speed
+        assert a == pytest.approx(w1 * t1 + w2 * (t_ck - t1) + w1 * (t - t_ck), abs=1e-5), t
+    # Another rotation axis cannot continue the pose.
+    with pytest.raises(Exception, match="rotation axis"):
+        grains.Simulation(drum_case(**{"walls.0.axis": [1, 0, 0]}), out=tmp_path / "d", restart=ck)

@@ -10,7 +10,9 @@
 // after the case's scale, rotation and translation) with its topology and
 // bounding-volume hierarchy (contact/mesh/mesh_surface.hpp), and particles are
 // brought into that frame. The pose is a function of the wall's motion clock
-// only, so a restart continues bitwise from the checkpointed clock.
+// only, so a restart continues bitwise from the checkpointed clock. A change
+// of motion on the way (a script's stage, a restart with an edited case)
+// rebases it: the pose at that time is kept and the new motion runs from it.
 //
 // Contacts: one per physical contact (face, edge or vertex; the rule is in
 // mesh_surface.hpp). Each keeps its history in one of the wall's slots of
@@ -58,9 +60,18 @@ struct MeshWall : WallCommon {
   int contacts_per_particle = 4;
   double reach = 0;  // largest distance of a vertex from the axis (bounds the surface speed)
 
+  // A change of motion at motion time base_time (rebase()): the translation
+  // and the angle then, and the new vibration's displacement then (taken off,
+  // so that the pose is continuous). Unused until the first change, so that
+  // the motion of a case is computed as it always was.
+  bool rebased = false;
+  double base_time = 0, base_angle = 0;
+  Vec3 base_offset{0, 0, 0}, base_vibration{0, 0, 0};
+
   // Pose at the motion clock: world = R body + T.
   double motion_time = 0;
   Vec3 offset{0, 0, 0};  // translation since motion time 0 (position())
+  double angle = 0;      // rotation about axis since motion time 0
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
   Vec3 T{0, 0, 0};
   Vec3 v_now{0, 0, 0}, w_now{0, 0, 0};
@@ -137,25 +148,44 @@ struct MeshWall : WallCommon {
     motion_time = t;
     moving = velocity.squaredNorm() > 0 || angular_velocity != 0 ||
              (vibration_frequency > 0 && vibration_amplitude.squaredNorm() > 0) || control.active();
-    const double s = ramp_factor(t), integral = ramp_integral(t);
+    const double s = ramp_factor(t), integral = rebased ? ramp_integral(t) - ramp_integral(base_time) : ramp_integral(t);
     const double ds = ramp > 0 && t - start > 0 && t - start < ramp ? 1 / ramp : 0;
     offset = velocity * integral;
+    if (rebased) offset += base_offset;
     v_now = velocity * s;
     if (vibration_frequency > 0) {
       const double om = 2 * M_PI * vibration_frequency, u = std::max(0.0, t - start);
       offset += vibration_amplitude * (s * std::sin(om * u));
+      if (rebased) offset -= base_vibration;
       v_now += vibration_amplitude * (ds * std::sin(om * u) + s * om * std::cos(om * u));
     }
     if (control.active()) {  // the controlled translation, on top of the prescribed motion
       offset += control.travel * control.direction;
       v_now += control.speed * control.direction;
     }
-    const double angle = angular_velocity * integral;
+    angle = angular_velocity * integral;
+    if (rebased) angle += base_angle;
     R = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
     T = axis_point - R * axis_point + offset;
     w_now = axis * (angular_velocity * s);
   }
   void advance(double dt) { place(motion_time + dt); }
+  /// The vibration's displacement at motion time t.
+  Vec3 vibration_at(double t) const {
+    if (vibration_frequency <= 0) return Vec3::Zero();
+    const double om = 2 * M_PI * vibration_frequency, u = std::max(0.0, t - start);
+    return vibration_amplitude * (ramp_factor(t) * std::sin(om * u));
+  }
+  /// Continues from motion time t with the motion the members now give
+  /// (velocity, angular_velocity, vibration, start, ramp; not the axis),
+  /// from the translation `offset_then` and the angle `angle_then` the wall
+  /// had at t: the pose does not jump, its velocity does.
+  void rebase(double t, const Vec3& offset_then, double angle_then) {
+    rebased = true;
+    base_time = t, base_offset = offset_then, base_angle = angle_then;
+    base_vibration = vibration_at(t);
+    place(t);
+  }
   void translate(const Vec3& d) { T += d, offset += d, moving = true; }
   Vec3& position() { return offset; }
   const Vec3& position() const { return offset; }
