@@ -132,6 +132,16 @@ void VtkOutput::write_series(const sim::Scene& s) const {
 void VtkOutput::resume(const sim::Scene& s, std::vector<double> times, std::vector<std::int64_t> steps) {
   times_ = std::move(times);
   steps_ = std::move(steps);
+  if (!times_.empty()) {
+    // Continued in another output folder (the earlier frames are not in
+    // it): the series starts afresh here, so that it names no missing file.
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%06zu", times_.size() - 1);
+    const fs::path last = dir_ / "frames" / (std::string("particles_") + buf);
+    std::error_code ec;
+    if (!fs::exists(last.string() + ".vtu", ec) && !fs::exists(last.string() + ".pvtu", ec))
+      times_.clear(), steps_.clear();
+  }
   last_step_ = steps_.empty() ? -1 : steps_.back();
   std::error_code ec;
   fs::create_directories(dir_ / "frames", ec);
