@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
+#include <type_traits>
 #include <unordered_map>
 
 #include "sim/parallel/bytes.hpp"
@@ -22,6 +23,27 @@ void unpack_body(BodyStore& b, const char*& r) {
   b.visit_fields([&](const char*, const char*, auto& vec) {
     using T = typename std::decay_t<decltype(vec)>::value_type;
     vec.push_back(take<T>(r));
+  });
+}
+
+// A ghost update within one rank (the images of a serial run's periodic
+// faces): the kinematic fields of particles from[k] copied to to + k, field
+// by field, as pack_kinematics and unpack_kinematics would carry them with
+// no shift, without the buffer. Every source lies before `to` (a swap sends
+// only what existed before its own ghosts).
+void copy_kinematics(ParticleStore& p, const std::vector<std::uint32_t>& from, std::size_t to) {
+  p.declare_fields([&](const ParticleStore::FieldInfo& f, auto member, auto) {
+    if (!f.kinematic) return;
+    auto& vec = p.*member;
+    if constexpr (std::is_same_v<std::decay_t<decltype(vec)>, std::vector<Vec3>>) {
+      if (member == &ParticleStore::x) {  // as pack_kinematics writes the image's position: x + shift
+        for (std::size_t k = 0; k < from.size(); ++k) vec[to + k] = vec[from[k]] + Vec3::Zero();
+        return;
+      }
+    }
+    const auto w = static_cast<std::size_t>(f.width);
+    for (std::size_t k = 0; k < from.size(); ++k)
+      for (std::size_t c = 0; c < w; ++c) vec[(to + k) * w + c] = vec[from[k] * w + c];
   });
 }
 
@@ -291,16 +313,22 @@ void Exchange::update_ghosts(ParticleStore& p, double time) {
   int tag = 100;
   const int f = domain_.shear.flow;
   for (const auto& sw : swaps_) {
-    sbuf_.clear();
-    for (const auto i : sw.send) p.pack_kinematics(i, Vec3::Zero(), sbuf_);
-    rbuf_.resize(sw.recv_count * kb);
-    comm_.sendrecv_known(sbuf_, sw.dest, rbuf_, sw.src, tag);
+    const bool local = sw.src >= 0 && sw.send.size() == sw.recv_count &&
+                       (!comm_.parallel() || (sw.dest == comm_.rank() && sw.src == comm_.rank()));
+    if (local) {
+      copy_kinematics(p, sw.send, sw.recv_start);
+    } else {
+      sbuf_.clear();
+      for (const auto i : sw.send) p.pack_kinematics(i, Vec3::Zero(), sbuf_);
+      rbuf_.resize(sw.recv_count * kb);
+      comm_.sendrecv_known(sbuf_, sw.dest, rbuf_, sw.src, tag);
+      const char* q = rbuf_.data();
+      for (std::size_t k = 0; k < sw.recv_count; ++k) q += p.unpack_kinematics(sw.recv_start + k, q);
+    }
     tag += 2;
-    const char* q = rbuf_.data();
     const bool shift = sw.recv_shift.squaredNorm() > 0;
     for (std::size_t k = 0; k < sw.recv_count; ++k) {
       const std::size_t g = sw.recv_start + k;
-      q += p.unpack_kinematics(g, q);
       if (shift) p.x[g] += sw.recv_shift;
       if (sw.shear_side != 0) {
         p.x[g][f] = sheared(sw, p.x[g][f], sw.flow_wrap[k], time);

@@ -48,6 +48,8 @@ runs=(
   "mesh_mixer_ellipsoids|$cases/mixer/case.yaml|--set particles.0.count=300 --set particles.0.shape={type: ellipsoid, aspect_ratio: 2} --set time.end=0.15 --set output.every=0.05"
   "adhesive_pour|$cases/adhesive_pour/case.yaml|--set particles.0.count=1200 --set particles.0.placement.region.max=[0.002,0.002,0.003] --set time.end=0.03 --set output.every=0.006"
   "pour_spheres_moving_floor|$cases/pour_spheres/case.yaml|--set particles.0.count=400 --set particles.0.placement.region.max=[0.02,0.02,0.006] --set time.end=0.03 --set output.every=0.01 --set walls.0.velocity=[0.002,0,0.01]"
+  "simple_shear_periodic|$cases/simple_shear/case.yaml|--set particles.0.count=400 --set time.end=0.02 --set output.every=0.005 --set output.stress.every=0.001"
+  "adhesive_deposition_periodic|$cases/adhesive_deposition/case.yaml|--set time.end=0.0006 --set output.every=0.0002"
 )
 fail=0
 for r in "${runs[@]}"; do
