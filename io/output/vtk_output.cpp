@@ -133,13 +133,16 @@ void VtkOutput::resume(const sim::Scene& s, std::vector<double> times, std::vect
   times_ = std::move(times);
   steps_ = std::move(steps);
   if (!times_.empty()) {
-    // Continued in another output folder (the earlier frames are not in
-    // it): the series starts afresh here, so that it names no missing file.
+    // Continued in another output folder (one without the series, nor its
+    // last frame): the series starts afresh here, so that it names no file
+    // the folder lacks. In the run's own folder it goes on, frames lost to a
+    // failed output included (they are written again as the run reaches them).
     char buf[32];
     std::snprintf(buf, sizeof buf, "%06zu", times_.size() - 1);
     const fs::path last = dir_ / "frames" / (std::string("particles_") + buf);
     std::error_code ec;
-    if (!fs::exists(last.string() + ".vtu", ec) && !fs::exists(last.string() + ".pvtu", ec))
+    if (!fs::exists(dir_ / "particles.pvd", ec) && !fs::exists(last.string() + ".vtu", ec) &&
+        !fs::exists(last.string() + ".pvtu", ec))
       times_.clear(), steps_.clear();
   }
   last_step_ = steps_.empty() ? -1 : steps_.back();
