@@ -30,9 +30,9 @@
 #include "io/output/progress.hpp"
 #include "io/run/simulation.hpp"
 #include "postprocess/analysis.hpp"
-#include "sim/neighbor/whole_clumps.hpp"
 #include "sim/integrate/arkode.hpp"
 #include "sim/neighbor/neighbor_stage.hpp"
+#include "sim/neighbor/whole_clumps.hpp"
 #include "sim/parallel/comm.hpp"
 #include "sim/parallel/exchange.hpp"
 #include "sim/scene/build_scene.hpp"
@@ -550,12 +550,11 @@ struct PySim {
     sc.pairs = std::move(table);
   }
 
-  // A plane's or a cylinder's constant velocity, between steps. The lists
-  // are rebuilt (their trigger bounds a wall's travel by its speed since
-  // the last build, which a slower wall would no longer bound).
   // A wall's motion between steps: a plane's or a cylinder's velocity; a
   // mesh wall's velocity, rotation speed and vibration, continued from its
-  // pose now (MeshWall::rebase).
+  // pose now (MeshWall::rebase). The lists are rebuilt (their trigger
+  // bounds a wall's travel by its speed since the last build, which a
+  // slower wall would no longer bound).
   struct WallMotion {
     std::optional<sim::Vec3> velocity;
     std::optional<double> angular_velocity, vibration_frequency;
@@ -563,15 +562,18 @@ struct PySim {
   };
   void set_wall_motion(const std::string& name, const WallMotion& m) {
     auto& sc = scene();
-    const auto finite = [](const auto& o) {
+    const auto finite = [](const char* what, const auto& o) {
+      bool ok = true;
       if constexpr (std::is_same_v<std::decay_t<decltype(*o)>, double>)
-        return !o || std::isfinite(*o);
+        ok = !o || std::isfinite(*o);
       else
-        return !o || o->allFinite();
+        ok = !o || o->allFinite();
+      if (!ok) throw py::value_error(std::string("set_wall_motion: ") + what + " must be finite");
     };
-    if (!finite(m.velocity) || !finite(m.vibration_amplitude) || !finite(m.angular_velocity) ||
-        !finite(m.vibration_frequency))
-      throw py::value_error("set_wall_motion: the values must be finite");
+    finite("velocity", m.velocity);
+    finite("angular_velocity", m.angular_velocity);
+    finite("vibration_amplitude", m.vibration_amplitude);
+    finite("vibration_frequency", m.vibration_frequency);
     if (m.vibration_frequency && *m.vibration_frequency < 0)
       throw py::value_error("set_wall_motion: vibration_frequency must be >= 0 (Hz)");
     if (arkode())

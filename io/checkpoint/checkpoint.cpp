@@ -519,12 +519,12 @@ void read_walls(const h5::File& f, sim::Walls& walls) {
       std::vector<double> m;
       if (!ws.empty() && f.exists(motion)) f.read_vector(motion, m, ws.size(), kMeshMotionWidth);
       for (std::size_t w = 0; w < ws.size(); ++w) {
-        if (m.empty()) {
-          ws[w].place(clock[w]);
-          continue;
-        }
         if constexpr (requires(K k) { k.rebase(0.0, sim::Vec3{}, 0.0); })
-          restore_motion(f, ws[w], &m[kMeshMotionWidth * w], clock[w]);
+          if (!m.empty()) {
+            restore_motion(f, ws[w], &m[kMeshMotionWidth * w], clock[w]);
+            continue;
+          }
+        ws[w].place(clock[w]);
       }
     }
   });

@@ -506,8 +506,10 @@ def test_mesh_wall_motion_between_stages(out):
     with grains.Simulation(drum_case(), out=out.parent / "b") as sim:
         with pytest.raises(ValueError, match="not both"):
             sim.set_wall_motion("drum", angular_velocity=1.0, rpm=10)
-        with pytest.raises(ValueError, match="finite"):
+        with pytest.raises(ValueError, match="velocity must be finite"):
             sim.set_wall_motion("drum", velocity=(0, float("inf"), 0))
+        with pytest.raises(ValueError, match="angular_velocity must be finite"):
+            sim.set_wall_motion("drum", angular_velocity=float("nan"))
         with pytest.raises(ValueError, match="three components"):
             sim.set_wall_motion("drum", vibration_amplitude=(0, 1))
         with pytest.raises(ValueError, match=">= 0"):

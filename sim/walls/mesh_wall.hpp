@@ -155,7 +155,7 @@ struct MeshWall : WallCommon {
     v_now = velocity * s;
     if (vibration_frequency > 0) {
       const double om = 2 * M_PI * vibration_frequency, u = std::max(0.0, t - start);
-      offset += vibration_amplitude * (s * std::sin(om * u));
+      offset += vibration_at(t);
       if (rebased) offset -= base_vibration;
       v_now += vibration_amplitude * (ds * std::sin(om * u) + s * om * std::cos(om * u));
     }
