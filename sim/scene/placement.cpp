@@ -251,8 +251,8 @@ void check_overlaps(const SceneConfig& c, const std::vector<PlacedParticle>& p) 
       const auto& b = p[i];
       auto where = [&](const PlacedParticle& q) {
         const auto& s = c.sets[q.set];
-        if (s.placement.kind == Placement::Kind::File && q.index_in_set < s.placement.position_where.size())
-          return s.placement.position_where[q.index_in_set];
+        if (s.placement.kind == Placement::Kind::File && q.index_in_set < s.placement.position_line.size())
+          return s.placement.where(q.index_in_set);
         return s.where;
       };
       const double ov = a.r + b.r - grid.delta(a.x, b.x).norm();
@@ -260,7 +260,7 @@ void check_overlaps(const SceneConfig& c, const std::vector<PlacedParticle>& p) 
                        " of set '" + c.sets[b.set].name + "' and particle " + std::to_string(a.index_in_set) +
                        " of set '" + c.sets[a.set].name + "' overlap by " + fmt(ov) + " m (" +
                        fmt(100 * ov / std::min(a.r, b.r)) + "% of the smaller radius; at most " +
-                       fmt(100 * c.overlap_tolerance) + "% is accepted" +
+                       fmt(100 * c.overlap_tolerance) + "% is accepted, neighbor.overlap_tolerance" +
                        (c.sets[a.set].frozen != c.sets[b.set].frozen
                             ? "; frozen grains may overlap each other, not the grains that move"
                             : "") +

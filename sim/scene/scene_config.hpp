@@ -43,7 +43,10 @@ struct Placement {
   std::uint64_t seed = 1;
   std::vector<Vec3> positions;   // File
   std::vector<double> radii;     // File (optional 4th column)
-  std::vector<std::string> position_where;  // File: file:line of each position
+  std::string positions_path;               // File: the file, for messages
+  std::vector<std::int64_t> position_line;  // File: its line of each position (1-based)
+  /// "file:line" of position k of a File placement (for messages).
+  std::string where(std::size_t k) const { return positions_path + ":" + std::to_string(position_line[k]); }
 };
 
 /// The shape of a particle set. Ellipsoid semi-axes scale with each

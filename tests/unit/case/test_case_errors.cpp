@@ -120,7 +120,7 @@ TEST(CaseErrors, OverlappingInitialParticles) {
   auto yaml = replace(kGood, "count: 10\n    placement: {type: random_fill, region: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}}",
                       "placement: {type: file, path: " + (dir / "pos.txt").string() + "}");
   const auto m = errors_of(yaml);
-  EXPECT_NE(m.find((dir / "pos.txt").string() + ":3: initial particles overlap: particle 1 of set 'set0' and particle 0 of set 'set0' overlap by 0.0005 m (100% of the smaller radius; at most 1% is accepted)"),
+  EXPECT_NE(m.find((dir / "pos.txt").string() + ":3: initial particles overlap: particle 1 of set 'set0' and particle 0 of set 'set0' overlap by 0.0005 m (100% of the smaller radius; at most 1% is accepted, neighbor.overlap_tolerance)"),
             std::string::npos) << m;
 }
 
