@@ -295,7 +295,7 @@ void ErkDriver::unpack(const double* y) {
     double* h = nl.history.data() + k * S;
     std::copy_n(yp + k * static_cast<std::size_t>(H_), H_, h);
     std::fill_n(h + H_, H_, 0.0);
-    nl.pair_constants[k].may_touch = true;
+    nl.may_touch[k] = 1;
   }
   const double* yw = y + walls_offset();
   for (const std::size_t e : wall_entry_) {

@@ -96,7 +96,6 @@ void RadiusGrowth::run(Scene& s) {
   if (p.fields().has(Field::Inertia))
     for (std::size_t i = 0; i < p.size(); ++i) p.inertia[i] *= f3 * f * f;
   if (f > 1) s.neighbors.add_growth(rmax * (1 - 1 / f));
-  s.neighbors.refresh_pair_constants(p);
 }
 
 }  // namespace grains::sim

@@ -71,7 +71,7 @@ class ShapePairContactStage final : public Stage {
     const Vec3 ci = g.point - p.x[i], cj = g.point - p.x[j];
     const Vec3 v_rel = p.v[i] + p.omega[i].cross(ci) - p.v[j] - p.omega[j].cross(cj);
     const Vec3 w_rel = p.omega[i] - p.omega[j];
-    const auto r = Law::evaluate(g, v_rel, w_rel, s.neighbors.pair_constants[k].mass, pp, s.clock.dt, hist);
+    const auto r = Law::evaluate(g, v_rel, w_rel, s.neighbors.pair_mass(p, i, j), pp, s.clock.dt, hist);
     force = r.force;
     ti = ci.cross(r.force) + r.rolling_torque;
     tj = -(cj.cross(r.force) + r.rolling_torque);
@@ -109,7 +109,8 @@ class ShapePairContactStage final : public Stage {
         double* hist = history(s, k);
         const Vec3 r = p.x[j] - p.x[i];
         const double r2 = r.squaredNorm();
-        if (r2 >= nl.pair_constants[k].contact2) {  // bounding spheres apart
+        const double rc = nl.contact_distance(p, i, j);
+        if (r2 >= rc * rc) {  // bounding spheres apart
           if (hist[H] != -1.0) {  // (most such entries were cleared at an earlier step)
             std::fill_n(hist, NH, 0.0);
             hist[H] = -1.0;

@@ -63,6 +63,21 @@ struct CellGrid {
 
 }  // namespace
 
+std::vector<std::pair<const char*, std::size_t>> NeighborList::memory_parts() const {
+  auto bytes = [](const auto& v) { return v.size() * sizeof(typename std::decay_t<decltype(v)>::value_type); };
+  std::size_t near = wall_near.size() * sizeof(wall_near[0]) + wall_items.size() * sizeof(wall_items[0]);
+  for (const auto& w : wall_near) near += bytes(w);
+  for (const auto& w : wall_items) near += bytes(w.start) + bytes(w.items);
+  return {{"neighbor_rows", bytes(row_start)},
+          {"neighbor_partners", bytes(partner)},
+          {"contact_history", bytes(history)},
+          {"neighbor_may_touch", bytes(may_touch)},
+          {"neighbor_build_state", bytes(x_build_) + bytes(build_id_)},
+          {"neighbor_ordered_sums", bytes(gather_start) + bytes(gather_entry)},
+          {"wall_near_lists", near},
+          {"imported_history", bytes(imported_ids_) + bytes(imported_history_)}};
+}
+
 bool NeighborList::needs_rebuild(const ParticleStore& p, const Walls& walls, double time) const {
   const std::size_t n = p.n_owned();
   // Never built (a scene may start empty and fill by insertion): build.
@@ -82,15 +97,19 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
                          bool sort) {
   const std::size_t n_own = p.n_owned();
   const std::size_t n = p.size();
-  // The previous rows, for carrying history by global ids. They move to
-  // members that keep their capacity, and the new rows are written into the
-  // buffers of the build before: no allocation per build (a list's history
-  // is often over glibc's mmap threshold, and a fresh mapping costs a page
-  // fault per 4 KiB touched).
+  // The previous rows, kept only until their history is carried over by
+  // global ids. Between builds a grain holds one list, not two (issue 26:
+  // memory per grain); what that costs is a fresh mapping per build for the
+  // new rows and history, a page fault per 4 KiB, about 0.1 % of the steps
+  // between builds in a dense bed (bench/RESULTS.md). The candidate pairs
+  // and the cell grid go before the history is allocated, for the same
+  // reason: the peak of a build is the old list and the new one.
+  std::vector<std::uint32_t> old_row_start, old_partner;
+  std::vector<double> old_history;
   if (history_size_ > 0) {
-    prev_row_start_.swap(row_start);
-    prev_partner_.swap(partner);
-    prev_history_.swap(history);
+    old_row_start.swap(row_start);
+    old_partner.swap(partner);
+    old_history.swap(history);
   }
   CellGrid grid(p, n, skin_ + reach_, lo_bound, hi_bound);
   if (sort && p.n_ghost() == 0) {
@@ -168,10 +187,19 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   }
   // Keep each row ordered by partner index: better locality, deterministic order.
   for (std::size_t i = 0; i < n; ++i) std::sort(partner.begin() + row_start[i], partner.begin() + row_start[i + 1]);
+  std::vector<std::uint32_t>().swap(pi);
+  std::vector<std::uint32_t>().swap(pj);
+  std::vector<std::size_t>().swap(grid.order);
+  std::vector<std::uint32_t>().swap(grid.cell_start);
 
-  compute_pair_constants(p);
+  may_touch.assign(partner.size(), 1);
   history.assign(partner.size() * static_cast<std::size_t>(history_size_), 0.0);
-  if (history_size_ > 0) carry_history(p, prev_row_start_, prev_partner_, prev_history_);
+  if (history_size_ > 0) {
+    carry_history(p, old_row_start, old_partner, old_history);
+    std::vector<double>().swap(old_history);
+    std::vector<std::uint32_t>().swap(old_partner);
+    std::vector<std::uint32_t>().swap(old_row_start);
+  }
   if (with_gather_) build_gather(p);
 
   // Wall near lists (owned particles only: walls act on what a rank integrates).
@@ -207,33 +235,6 @@ void NeighborList::drop_frozen(const ParticleStore& p, std::vector<std::uint32_t
   if (with_items) items.start.resize(kept + 1), items.items.resize(item);
 }
 
-void NeighborList::compute_pair_constants(const ParticleStore& p) {
-  const std::size_t rows = row_start.empty() ? 0 : row_start.size() - 1;
-  pair_constants.resize(partner.size());
-  if (frozen_) {  // a frozen grain is as heavy as a wall: m* is the other's mass
-    for (std::size_t i = 0; i < rows; ++i)
-      for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
-        const auto j = partner[k];
-        const double rs = p.radius[i] + p.radius[j];
-        const double rc = rs + reach_;
-        const double m = p.inv_mass[i] == 0   ? p.mass[j]
-                         : p.inv_mass[j] == 0 ? p.mass[i]
-                                              : p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
-        pair_constants[k] = {rc * rc, p.radius[i] * p.radius[j] / rs, m, true};
-      }
-    return;
-  }
-  for (std::size_t i = 0; i < rows; ++i)
-    for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
-      const auto j = partner[k];
-      const double rs = p.radius[i] + p.radius[j];
-      const double rc = rs + reach_;  // a contact in tension (JKR) holds up to reach_ apart
-      // may_touch starts true: history carried over (or restored) may be non-zero.
-      pair_constants[k] = {rc * rc, p.radius[i] * p.radius[j] / rs, p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]),
-                           true};
-    }
-}
-
 void NeighborList::restore(const ParticleStore& p, BuildState b) {
   build_time_ = b.time;
   x_build_ = std::move(b.x);
@@ -242,7 +243,7 @@ void NeighborList::restore(const ParticleStore& p, BuildState b) {
   growth_ = b.growth;
   image_travel_ = 0;
   stats_.pairs = partner.size();
-  compute_pair_constants(p);
+  may_touch.assign(partner.size(), 1);
   if (with_gather_) build_gather(p);
 }
 

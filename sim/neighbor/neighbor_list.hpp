@@ -12,6 +12,7 @@
 // 2 max|x - x_build| > skin (pairs) or max|x - x_build| + wall travel > skin,
 // each with the radius growth since the build added to the displacement.
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "sim/state/particle_store.hpp"
@@ -68,8 +69,6 @@ class NeighborList {
   /// Radii grew by up to dr since the last build (integrate/radius_growth):
   /// the growth closes gaps like displacement does and counts in the trigger.
   void add_growth(double dr) { growth_ += dr; }
-  /// Recomputes the per-pair constants after radii or masses changed.
-  void refresh_pair_constants(const ParticleStore& p) { compute_pair_constants(p); }
 
   /// Rebuilds rows, re-sorts particles by cell for locality (when sort is
   /// true; only without ghosts) and carries the contact history over. lo/hi
@@ -109,22 +108,39 @@ class NeighborList {
   std::vector<std::uint32_t> row_start;
   std::vector<std::uint32_t> partner;   // local index of the other particle
   std::vector<double> history;          // history_size per entry
-  /// Per-entry constants of a sphere pair, computed at build time: the
-  /// squared contact distance (ri + rj + reach())^2, R* and m*. They never change
-  /// between builds, so the force loop does no divisions for them.
-  /// `may_touch` is false only when the pair is known apart with zero
-  /// history, so the force loop skips its history for non-touching pairs.
-  struct PairConstants {
-    double contact2, radius, mass;
-    bool may_touch;
-  };
-  std::vector<PairConstants> pair_constants;
+  /// Per entry: 0 only when the pair is known apart with zero history, so
+  /// that the force loops skip the history of pairs that stay apart. (A
+  /// cache: 1 after every build and restore, which only re-zeroes zero
+  /// history.) Nothing else is kept per entry beside partner and history:
+  /// the pair's contact distance, R* and m* are computed from the particles
+  /// where they are needed (one byte per entry instead of 32, issue 26).
+  std::vector<std::uint8_t> may_touch;
+  /// The centre distance below which the pair (i, j) is in contact: ri + rj,
+  /// plus the reach of a law whose contacts hold in tension (JKR).
+  double contact_distance(const ParticleStore& p, std::size_t i, std::size_t j) const {
+    return p.radius[i] + p.radius[j] + reach_;
+  }
+  /// R* = ri rj / (ri + rj).
+  static double pair_radius(const ParticleStore& p, std::size_t i, std::size_t j) {
+    return p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
+  }
+  /// m* = mi mj / (mi + mj); with frozen grains (set_frozen), a frozen grain
+  /// is as heavy as a wall: m* is the other's mass.
+  double pair_mass(const ParticleStore& p, std::size_t i, std::size_t j) const {
+    if (frozen_) {
+      if (p.inv_mass[i] == 0) return p.mass[j];
+      if (p.inv_mass[j] == 0) return p.mass[i];
+    }
+    return p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+  }
   /// Per wall (Walls' index across kinds): the owned particles near it.
   std::vector<std::vector<std::uint32_t>> wall_near;
   /// Per wall, what its kind keeps per near particle (a mesh: the triangles near it).
   std::vector<NearItems> wall_items;
 
   const Stats& stats() const { return stats_; }
+  /// Bytes the list holds, by part (memory report): (name, bytes).
+  std::vector<std::pair<const char*, std::size_t>> memory_parts() const;
   /// A continuation's first full update repeats the one the uninterrupted
   /// run made before saving: it keeps the saved count.
   void keep_build_count(long builds) { stats_.builds = builds; }
@@ -142,13 +158,12 @@ class NeighborList {
   };
   BuildState build_state() const { return {build_time_, x_build_, build_id_, stats_.builds, growth_}; }
   /// Restores a saved list: the public rows, history and near lists must be
-  /// assigned already; pair_constants are recomputed from the particles.
+  /// assigned already; may_touch is set for every entry.
   void restore(const ParticleStore& p, BuildState b);
 
  private:
   void carry_history(const ParticleStore& p, const std::vector<std::uint32_t>& old_row_start,
                      const std::vector<std::uint32_t>& old_partner, const std::vector<double>& old_history);
-  void compute_pair_constants(const ParticleStore& p);
   void build_gather(const ParticleStore& p);
   int history_size_ = 0;
   double skin_ = 0;
@@ -164,9 +179,6 @@ class NeighborList {
   // Global ids of all particles (owned and ghosts) at the last build: the
   // keys that carry history to the next build.
   std::vector<std::int64_t> build_id_;
-  // The rows of the build before the last (build() reuses their buffers).
-  std::vector<std::uint32_t> prev_row_start_, prev_partner_;
-  std::vector<double> prev_history_;
   // Histories received with migrating particles: (id_a, id_b) and H doubles each.
   std::vector<std::int64_t> imported_ids_;
   std::vector<double> imported_history_;

@@ -73,7 +73,7 @@ TEST(RadiusGrowth, StopsAtMaxScale) {
 }
 
 // Every pair that touches (brute force, minimum image in a periodic box) is
-// in the neighbour list, with pair constants of the current radii.
+// in the neighbour list, with the contact distance of the current radii.
 void expect_list_complete(const io::Simulation& s, double L, bool periodic) {
   const auto& p = s.scene.particles;
   const auto& nl = s.scene.neighbors;
@@ -83,7 +83,7 @@ void expect_list_complete(const io::Simulation& s, double L, bool periodic) {
     for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
       const auto j = nl.partner[k];
       const double rs = p.radius[i] + p.radius[j];
-      ASSERT_NEAR(nl.pair_constants[k].contact2, rs * rs, 1e-12 * rs * rs);
+      ASSERT_EQ(nl.contact_distance(p, i, j), rs);
       listed.emplace(std::min(p.id[i], p.id[j]), std::max(p.id[i], p.id[j]));
     }
   for (std::size_t i = 0; i < p.n_owned(); ++i)

@@ -1,0 +1,7 @@
+// The lockstep Hertz–Mindlin arithmetic (sphere_lanes.inc) compiled with AVX2
+// (four lanes per instruction), without FMA contraction so that it gives the
+// scalar law's bits; chosen at run time by sphere_lanes.cpp.
+#if !defined(__AVX2__)
+#error "sphere_lanes_avx2.cpp must be compiled with -mavx2"
+#endif
+#include "sim/laws/sphere_lanes.inc"
