@@ -41,6 +41,7 @@ struct Case {
   sim::SceneConfig scene;
   OutputConfig output;
   CheckpointConfig checkpoint;
+  double read_seconds = 0;  // spent reading and checking it (a positions file included)
 };
 
 /// Reads and validates a case file; `overrides` are "key.path=value" strings

@@ -103,6 +103,7 @@ int cmd_run(const std::vector<std::string>& a, bool check_only) {
       grains::io::RunOptions opt;
       grains::io::add_output_stages(sim, opt);
       out << "case is valid\n" << grains::io::describe(sim);
+      if (!comm.parallel()) out << grains::io::estimate_run_time(sim);  // (last: it advances the simulation)
       return 0;
     }
     grains::io::RunOptions opt;

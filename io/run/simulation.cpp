@@ -19,6 +19,7 @@
 #include "sim/neighbor/neighbor_stage.hpp"
 #include "sim/parallel/comm.hpp"
 #include "sim/parallel/exchange.hpp"
+#include "sim/scene/memory_report.hpp"
 #include "io/output/solid_fraction_output.hpp"
 #include "io/output/vtk_output.hpp"
 #include "io/run/checkpoint_stage.hpp"
@@ -28,6 +29,7 @@
 namespace grains::io {
 
 Simulation make_simulation(Case c) {
+  const auto started = std::chrono::steady_clock::now();
   Simulation s;
   s.c = std::move(c);
   s.scene = sim::build_scene(s.c.scene);
@@ -45,6 +47,7 @@ Simulation make_simulation(Case c) {
   }
   s.rayleigh_time = sim::rayleigh_time(s.c.scene);
   s.pipeline = sim::assemble_pipeline(s.scene, s.c.scene);
+  s.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return s;
 }
 
@@ -341,6 +344,12 @@ RunSummary Runner::finish() {
   if (vtk_) r.frames = vtk_->frames();
 
   const std::int64_t migrated = s.scene.exchange ? comm.sum(s.scene.exchange->stats().migrated) : 0;
+  // Memory: what the scene holds, part by part, and the peak resident set
+  // size, summed over the ranks (docs/memory.md).
+  auto parts = sim::memory_parts(s.scene);
+  double counted = 0;
+  for (auto& part : parts) counted += (part.bytes = comm.sum(part.bytes));
+  const double peak_rss = comm.sum(sim::resident_bytes(true));
   if (!comm.root()) return r;
   std::ofstream j(opt_.out_dir / "summary.json");
   j.precision(10);
@@ -359,6 +368,20 @@ RunSummary Runner::finish() {
     j << "  \"decomposition\": \"" << s.scene.exchange->decomposition().describe() << "\",\n"
       << "  \"rebalances\": " << x.rebalances << ",\n  \"migrated_particles\": " << migrated << ",\n"
       << "  \"load_imbalance\": " << x.imbalance << ",\n";
+  }
+  j << "  \"setup_seconds\": {\"case\": " << s.c.read_seconds << ", \"scene\": " << s.build_seconds << "},\n";
+  {
+    const double n = std::max<double>(1.0, static_cast<double>(r.particles_end));
+    j << "  \"memory\": {\n    \"peak_resident_bytes\": " << peak_rss << ",\n    \"peak_resident_bytes_per_particle\": "
+      << peak_rss / n << ",\n    \"counted_bytes_per_particle\": " << counted / n
+      << ",\n    \"bytes_per_particle\": {";
+    bool first = true;
+    for (const auto& part : parts) {
+      if (part.bytes == 0) continue;
+      j << (first ? "" : ",") << "\n      \"" << part.name << "\": " << part.bytes / n;
+      first = false;
+    }
+    j << "\n    }\n  },\n";
   }
   if (!r.restarted_from.empty()) j << "  \"restarted_from\": \"" << r.restarted_from << "\",\n";
   if (r.signal != 0) j << "  \"interrupted_by_signal\": " << r.signal << ",\n";
@@ -388,6 +411,55 @@ RunSummary run(Simulation& s, const RunOptions& opt) {
   return runner.finish();
 }
 
+std::string estimate_run_time(Simulation& s, double budget) {
+  auto& sc = s.scene;
+  const std::int64_t total = sc.clock.n_steps;
+  if (total <= 0) return "run time: no steps\n";
+  const auto& stages = s.pipeline.stages();
+  for (const auto& st : stages)
+    if (st->phase() != sim::Phase::Output) st->start(sc);
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  s.pipeline.initialize(sc);
+  const double init = std::chrono::duration<double>(clock::now() - t0).count();
+  const auto t1 = clock::now();
+  std::int64_t k = 0;
+  double took = 0;
+  while (k < total && k < 200 && (k < 3 || took < budget)) {  // Pipeline::step without its output phase
+    bool driven = false;
+    for (const auto& st : stages)
+      if (st->is_driver()) st->drive(sc, s.pipeline), driven = true;
+    if (!driven)
+      for (const auto& st : stages)
+        if (st->phase() != sim::Phase::Output) st->run(sc);
+    sc.clock.step += 1;
+    sc.clock.time = static_cast<double>(sc.clock.step) * sc.clock.dt;
+    ++k;
+    took = std::chrono::duration<double>(clock::now() - t1).count();
+  }
+  const double per = took / static_cast<double>(k);
+  const double run = init + per * static_cast<double>(total);
+  auto span = [](double sec) {
+    char b[64];
+    if (sec < 120)
+      std::snprintf(b, sizeof b, "%.3g s", sec);
+    else if (sec < 7200)
+      std::snprintf(b, sizeof b, "%.3g min", sec / 60);
+    else
+      std::snprintf(b, sizeof b, "%.3g h", sec / 3600);
+    return std::string(b);
+  };
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "run time: about %s for %lld steps on %d thread(s) (an estimate: the first %lld steps took %.3g ms "
+                "each, the first neighbour build and forces %s; a bed that densifies, as a pour does, or gains "
+                "grains runs slower later; outputs come on top); set-up: %s reading the case, %s building the "
+                "scene\n",
+                span(run).c_str(), static_cast<long long>(total), omp_get_max_threads(), static_cast<long long>(k),
+                per * 1e3, span(init).c_str(), span(s.c.read_seconds).c_str(), span(s.build_seconds).c_str());
+  return buf;
+}
+
 std::string describe(const Simulation& s) {
   std::ostringstream o;
   const auto& sc = s.scene;
@@ -409,7 +481,7 @@ std::string describe(const Simulation& s) {
     char buf[320];
     std::snprintf(buf, sizeof buf,
                   "memory: about %.3g MiB for the %lld particles the case asks for (fields %.0f bytes each, exact; "
-                  "neighbour lists about %.0f bytes each in a dense bed, estimated)\n",
+                  "neighbour lists about %.0f bytes each in a dense bed at a rebuild, estimated; docs/memory.md)\n",
                   m.total() / 1048576.0, static_cast<long long>(m.particles), m.field_bytes, m.list_bytes);
     o << buf;
   }

@@ -17,11 +17,19 @@ struct Simulation {
   sim::Scene scene;
   sim::Pipeline pipeline;
   double rayleigh_time = 0;
+  double build_seconds = 0;  // make_simulation: the scene (placement and its overlap check) and the pipeline
 };
 
 /// Builds the scene and its physics pipeline (no outputs). Throws
 /// sim::SetupError / CaseError with case-file locations.
 Simulation make_simulation(Case c);
+
+/// `grains check`'s run-time estimate: runs the case's first steps (at most
+/// `budget` seconds or 200 steps, without outputs; the simulation is left
+/// advanced, so call it last) and scales their time to the whole run. A
+/// line of text saying it is an estimate and what it rests on. Serial only
+/// (under MPI the ranks' state is made by the run).
+std::string estimate_run_time(Simulation& s, double budget = 1.0);
 
 struct RunOptions {
   std::filesystem::path out_dir = "out";

@@ -82,6 +82,13 @@ class Exchange {
   void set_domain(const Domain& d);
   /// Refreshes the ghosts' kinematics along the send lists, at time t.
   void update_ghosts(ParticleStore& p, double time);
+  /// Bytes held by the send lists and the message buffers (memory report;
+  /// at their capacity: a buffer is written up to the largest message it held).
+  std::size_t memory_bytes() const {
+    std::size_t b = (sbuf_.capacity() + rbuf_.capacity()) + swaps_.capacity() * sizeof(Swap);
+    for (const auto& sw : swaps_) b += sw.send.capacity() * sizeof(std::uint32_t) + sw.flow_wrap.capacity();
+    return b;
+  }
 
  private:
   struct Swap {

@@ -152,7 +152,12 @@ std::int64_t planned_particles(const SceneConfig& c, bool capped_only) {
     return s.shape.kind == ShapeConfig::Kind::Clump ? static_cast<std::int64_t>(s.shape.clump->radii.size()) : 1;
   };
   std::int64_t n = 0;
-  for (const auto& s : c.sets) n += s.count * balls(s);
+  for (const auto& s : c.sets) {
+    const std::int64_t count = s.placement.kind == Placement::Kind::File
+                                   ? static_cast<std::int64_t>(s.placement.positions.size())
+                                   : s.count;  // 0 for a lattice that fills its region: counted once placed
+    n += count * balls(s);
+  }
   for (const auto& in : c.insertions) {
     if (capped_only && in.every > 0 && in.times == 0) continue;
     std::int64_t events = 1;
@@ -280,13 +285,15 @@ Scene build_scene(SceneConfig& c) {
   // Memory, before anything is allocated per particle: the fields are exact;
   // the neighbour lists are estimated for a dense bed (4 list pairs per
   // particle: 3.6 measured in the settled 10k pour with the default skin,
-  // bench/RESULTS.md), each pair a partner index, its history and 3 doubles
-  // of pair constants, plus the row start. A case whose fields
+  // 3.9 in the settled beds of bench/scale), each pair a partner index, its
+  // history and a may-touch byte, plus the row start; twice, for the build
+  // that holds the old list and the new one; plus the positions and ids of
+  // the last build (docs/memory.md). A case whose fields
   // alone (per rank) exceed the memory available is refused here, not by
   // std::bad_alloc somewhere in the placement.
   s.memory.particles = planned_particles(c);
   s.memory.field_bytes = static_cast<double>(s.particles.record_bytes());
-  s.memory.list_bytes = 4.0 * (4 + 8.0 * (need.history_size + 3)) + 8;
+  s.memory.list_bytes = 2 * (4.0 * (4 + 1 + 8.0 * need.history_size) + 4) + 24 + 8;
   if (const double avail = available_memory(); avail > 0) {
     const double ranks = static_cast<double>(Comm::world().size());
     const std::int64_t certain = planned_particles(c, true);
@@ -310,9 +317,13 @@ Scene build_scene(SceneConfig& c) {
     }
   }
 
-  // Particles.
+  // Particles, into arrays of exactly their size (grown one by one, an
+  // array of 10^7 grains would have a capacity of 2^24).
   const auto placed = place_particles(c);
   check_overlaps(c, placed);
+  s.particles.visit_fields([&](const char*, const char*, auto& v, int width) {
+    v.reserve(placed.size() * static_cast<std::size_t>(width));
+  });
   std::int64_t gid = 0;
   std::vector<std::mt19937_64> orient_rng;
   for (const auto& set : c.sets) orient_rng.emplace_back(set.placement.seed ^ 0x9E3779B97F4A7C15ull);
@@ -341,6 +352,13 @@ Scene build_scene(SceneConfig& c) {
                      (need.ellipsoids ? "ellipsoids" : "clumps"));
 
   if (need.clumps) place_clump_balls(s.particles, s.bodies, true);
+  // The positions a file gave are in the particles now: their copy in the
+  // case (24 bytes and a line number per grain) goes. (The radii stay: the
+  // Rayleigh time of the case is read from them.)
+  for (auto& set : c.sets) {
+    std::vector<Vec3>().swap(set.placement.positions);
+    std::vector<std::int64_t>().swap(set.placement.position_line);
+  }
   // Kinds that check themselves against the domain and the initial particles
   // (a mesh wall: its units, its place, particles starting inside it).
   s.walls.for_each([&](const auto& w, std::size_t) {

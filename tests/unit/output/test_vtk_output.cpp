@@ -103,6 +103,56 @@ output: {every_steps: 1000000, progress: false}
   fs::remove_all(dir);
 }
 
+// summary.json's memory report (docs/memory.md): every part per particle,
+// the fields exact (their arrays hold exactly the grains placed), the parts
+// adding up to the counted total, and a peak resident size above it; and the
+// set-up times.
+TEST(Summary, MemoryPerParticleAndSetUpTimes) {
+  const std::string yaml = R"(
+domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.02]}
+gravity: [0, 0, -9.81]
+materials:
+  - {name: m, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3, friction: 0.3}
+particles:
+  - {material: m, radius: 0.0005, count: 200, placement: {type: random_fill, region: {min: [0, 0, 0], max: [0.01, 0.01, 0.02]}}}
+walls:
+  - {type: plane, point: [0, 0, 0], normal: [0, 0, 1], material: m}
+time: {dt_rayleigh: 0.2, end: 0.002}
+output: {every_steps: 40, progress: false, vtk: false}
+)";
+  auto s = from_yaml(yaml);
+  const fs::path dir = fs::temp_directory_path() / "grains_test_summary_memory";
+  run_into(s, dir);
+  std::ifstream in(dir / "summary.json");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string j = ss.str();
+  auto number = [&](const std::string& key) {
+    const auto at = j.find("\"" + key + "\": ");
+    EXPECT_NE(at, std::string::npos) << key << " in " << j;
+    return at == std::string::npos ? -1.0 : std::stod(j.substr(at + key.size() + 4));
+  };
+  EXPECT_EQ(number("field:position"), 24.0);
+  EXPECT_EQ(number("field:velocity"), 24.0);
+  EXPECT_EQ(number("field:id"), 8.0);
+  EXPECT_EQ(number("field:wall_history"), 24.0);  // one plane, a 3-double spring per grain
+  EXPECT_GT(number("contact_history"), 0.0);
+  EXPECT_GT(number("neighbor_partners"), 0.0);
+  // The parts add up to the counted total.
+  const auto parts = j.find("\"bytes_per_particle\": {");
+  ASSERT_NE(parts, std::string::npos);
+  double sum = 0;
+  for (auto at = j.find(": ", parts + 24); at < j.find('}', parts); at = j.find(": ", at + 1))
+    sum += std::stod(j.substr(at + 2));
+  EXPECT_NEAR(sum, number("counted_bytes_per_particle"), 1e-6 * sum);
+  EXPECT_GT(number("peak_resident_bytes"), 200 * number("counted_bytes_per_particle"));
+  const std::string setup_key = "\"setup_seconds\": {\"case\": ";
+  const auto setup = j.find(setup_key);
+  ASSERT_NE(setup, std::string::npos);
+  EXPECT_GE(std::stod(j.substr(setup + setup_key.size())), 0.0);
+  EXPECT_GT(number("scene"), 0.0);
+}
+
 TEST(VtkOutput, UnwritableFolderIsAClearError) {
   const std::string yaml = R"(
 domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}
