@@ -2,8 +2,9 @@
 // against the scalar loop of the same stage (GRAINS_SIMD=scalar): a cluster
 // of overlapping spheres of two materials with random motion and random
 // springs, some of them sliding, over several steps, serial and with the
-// ordered (deterministic) sums. Forces, torques and springs must agree to
-// the bit, batch boundaries and padded lanes included.
+// ordered (deterministic) sums, in clusters small and large (the lanes
+// prefetch in large ones). Forces, torques and springs must agree to the
+// bit, batch boundaries and padded lanes included.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -63,7 +64,8 @@ Scene cluster(int n, std::uint64_t seed, bool deterministic) {
 }
 
 void compare(bool deterministic) {
-  for (int n : {3, 40, 300}) {
+  // 40000 grains: past the size from which the lanes prefetch the partners.
+  for (int n : {3, 40, 300, 40000}) {
     Scene a = cluster(n, 7 + n, deterministic), b = cluster(n, 7 + n, deterministic);
     // The lanes stage as the environment chooses (GRAINS_SIMD=baseline: the
     // baseline copy, see CMakeLists.txt), the scalar one by GRAINS_SIMD=scalar.
