@@ -1,0 +1,104 @@
+#!/usr/bin/env bash
+# Scale benchmark (issue 26): settled beds of 10^4 ... 10^7 spheres, grains
+# serial and on 2 MPI ranks, LIGGGHTS on the same beds (serial, up to
+# LIGGGHTS_MAX grains). For each: particle-steps/s, ns per neighbour-list pair
+# in the pair stage, peak resident memory per grain, and set-up time (the
+# process's wall time less the stepping loop's). Results: bench/RESULTS.md.
+#
+#   bash bench/scale/run.sh                      (10^4 - 10^6: about half an hour)
+#   SIZES="40x25" STEPS=300 bash bench/scale/run.sh   (10^7 grains: 8.5 GB)
+#
+# The beds: bench/scale/seed.yaml (10^4 grains poured into a box periodic in
+# x and y; built once into $WORK/seed) repeated KX x KY times side by side by
+# tile.py. SIZES lists KXxKY (default "1x1 5x2 10x10": 10^4, 10^5, 10^6).
+# Environment: GRAINS (binary, default build/grains), WORK (scratch, default
+# /tmp/grains-bench-scale), STEPS (default 1000), RANKS (default "1 2"),
+# LIGGGHTS (default liggghts; LIGGGHTS_MAX default 1000000, 0 to skip),
+# PYTHON (with numpy and vtk; default /usr/bin/python3).
+set -euo pipefail
+HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+ROOT="$(cd "$HERE/../.." && pwd)"
+GRAINS="${GRAINS:-$ROOT/build/grains}"
+WORK="${WORK:-/tmp/grains-bench-scale}"
+STEPS="${STEPS:-1000}"
+SIZES="${SIZES:-1x1 5x2 10x10}"
+RANKS="${RANKS:-1 2}"
+LIGGGHTS="${LIGGGHTS:-liggghts}"
+LIGGGHTS_MAX="${LIGGGHTS_MAX:-1000000}"
+PYTHON="${PYTHON:-/usr/bin/python3}"
+export OMP_NUM_THREADS=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+mkdir -p "$WORK"; WORK="$(cd "$WORK" && pwd)"
+echo "== $(date -u '+%Y-%m-%d %H:%M UTC') on $(hostname): $(nproc --all) cores, $(free -g | awk '/Mem:/{print $2}') GiB; load $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "== grains: $GRAINS ($("$GRAINS" --version | head -1), commit $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo '?'))"
+
+# The seed bed, once.
+SEED="$WORK/seed/frames/particles_000001.vtu"
+if [ ! -f "$SEED" ]; then
+  echo "== seed bed: $GRAINS run $HERE/seed.yaml (10^4 grains, 40,000 steps)"
+  "$GRAINS" run "$HERE/seed.yaml" -o "$WORK/seed" -q
+fi
+
+# wall_seconds FILE CMD...: runs CMD; FILE gets its wall seconds and peak RSS (bytes) of the children.
+measure() {
+  "$PYTHON" -c "
+import resource, subprocess, sys, time
+t = time.monotonic()
+r = subprocess.run(sys.argv[2:]).returncode
+w = time.monotonic() - t
+u = resource.getrusage(resource.RUSAGE_CHILDREN)
+open(sys.argv[1], 'w').write('%.3f %d\n' % (w, u.ru_maxrss * 1024))
+sys.exit(r)" "$@"
+}
+
+ROWS="$WORK/rows.md"; : > "$ROWS"
+for size in $SIZES; do
+  KX=${size%x*}; KY=${size#*x}
+  BED="$WORK/bed_$size"
+  "$PYTHON" "$HERE/tile.py" "$SEED" "$KX" "$KY" "$STEPS" "$BED" --vtk 0 --liggghts-max "$LIGGGHTS_MAX"
+  source "$BED/bed.env"
+  for np in $RANKS; do
+    OUT="$BED/grains_np$np"; rm -rf "$OUT"
+    if [ "$np" = 1 ]; then
+      measure "$BED/grains_np$np.m" "$GRAINS" run "$BED/case.yaml" -o "$OUT" -q
+    else
+      # (peak RSS here is the largest rank's; the row gives the ranks' sum from summary.json)
+      measure "$BED/grains_np$np.m" mpirun --oversubscribe -np "$np" "$GRAINS" run "$BED/case.yaml" -o "$OUT" -q
+    fi
+    "$PYTHON" - "$OUT/summary.json" "$BED/grains_np$np.m" "$N" "$np" >> "$ROWS" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1])); wall, rss = open(sys.argv[2]).read().split(); n = int(sys.argv[3])
+pair = sum(v for k, v in s['stage_seconds'].items() if 'pair_contacts' in k)
+pairs = s['neighbor_pairs_per_step'] * s['steps']
+mem = s['memory']
+rss_n = mem['peak_resident_bytes'] / n
+print('| grains | %d | %s | %.3g | %.1f | %.0f | %.0f | %.1f | %.1f |' % (
+    n, sys.argv[4], s['particle_steps_per_second'], pair / pairs * 1e9 * int(sys.argv[4]), rss_n,
+    mem['counted_bytes_per_particle'], float(wall) - s['wall_time_s'], s['wall_time_s']))
+PY
+    tail -1 "$ROWS"
+  done
+  if [ -f "$BED/atoms.data" ] && command -v "$LIGGGHTS" > /dev/null; then
+    mkdir -p "$BED/liggghts"
+    read -r _ E_L < <(python3 "$ROOT/bench/pour/match_damping.py" "$REST")
+    sed -e "s#@DATA@#$BED/atoms.data#; s#@SKIN@#$SKIN#g; s#@E@#$E#; s#@NU@#$NU#; s#@MU@#$MU#" \
+        -e "s#@E_LIGGGHTS@#$E_L#; s#@DT@#$DT#; s#@STEPS@#$STEPS#g" "$HERE/in.liggghts" > "$BED/liggghts/in.liggghts"
+    (cd "$BED/liggghts" && measure ../liggghts.m "$LIGGGHTS" -in in.liggghts -log log.liggghts -echo none -screen none)
+    "$PYTHON" - "$BED/liggghts/log.liggghts" "$BED/liggghts.m" "$N" >> "$ROWS" <<'PY'
+import re, sys
+log = open(sys.argv[1]).read(); wall, rss = open(sys.argv[2]).read().split(); n = int(sys.argv[3])
+m = re.search(r'Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps', log)
+loop, steps = float(m.group(1)), int(m.group(2))
+pair = float(re.search(r'^Pair\s+time \(%\) = ([0-9.eE+-]+)', log, re.M).group(1))
+nb = re.search(r'Total # of neighbors = (\d+)', log)
+per_pair = pair / (int(nb.group(1)) * steps) * 1e9 if nb else float('nan')
+print('| LIGGGHTS | %d | 1 | %.3g | %.1f | %.0f | | %.1f | %.1f |' % (
+    n, n * steps / loop, per_pair, int(rss) / n, float(wall) - loop, loop))
+PY
+    tail -1 "$ROWS"
+  fi
+done
+echo
+echo "| code | grains | ranks | particle-steps/s | ns per list pair (pair stage) | peak RSS B/grain | counted B/grain | set-up s | loop s |"
+echo "|---|---|---|---|---|---|---|---|---|"
+cat "$ROWS"
+echo "== load after: $(cut -d' ' -f1-3 /proc/loadavg)"
