@@ -15,6 +15,12 @@
 # /tmp/grains-bench-scale), STEPS (default 1000), RANKS (default "1 2"),
 # LIGGGHTS (default liggghts; LIGGGHTS_MAX default 1000000, 0 to skip),
 # PYTHON (with numpy and vtk; default /usr/bin/python3).
+#
+# Wide size distributions: POLY="uniform10 uniform20 bimodal10 bimodal20"
+# (seeds in poly/: size ratios 10 and 20) adds those beds, each with a skin
+# per grain and with one skin, beside LIGGGHTS; SIZES="" runs only them.
+# Their columns to read beside the mono bed's: ns per list pair (pair stage)
+# and ns per grain-step (neighbour stage).
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(cd "$HERE/../.." && pwd)"
@@ -51,54 +57,86 @@ sys.exit(r)" "$@"
 }
 
 ROWS="$WORK/rows.md"; : > "$ROWS"
-for size in $SIZES; do
-  KX=${size%x*}; KY=${size#*x}
-  BED="$WORK/bed_$size"
-  "$PYTHON" "$HERE/tile.py" "$SEED" "$KX" "$KY" "$STEPS" "$BED" --vtk 0 --liggghts-max "$LIGGGHTS_MAX"
+
+# run_bed BED LABEL [--set ...]: grains on RANKS ranks, then LIGGGHTS, on the
+# bed tile.py wrote into BED; one table row each, LABEL naming the bed.
+run_bed() {
+  local BED="$1" LABEL="$2"; shift 2
   source "$BED/bed.env"
+  local tag; tag="$(printf '%s' "$*" | tr -c 'A-Za-z0-9_.=' '_')"
   for np in $RANKS; do
-    OUT="$BED/grains_np$np"; rm -rf "$OUT"
+    OUT="$BED/grains_np$np$tag"; rm -rf "$OUT"
     if [ "$np" = 1 ]; then
-      measure "$BED/grains_np$np.m" "$GRAINS" run "$BED/case.yaml" -o "$OUT" -q
+      measure "$OUT.m" "$GRAINS" run "$BED/case.yaml" -o "$OUT" -q "$@"
     else
       # (peak RSS here is the largest rank's; the row gives the ranks' sum from summary.json)
-      measure "$BED/grains_np$np.m" mpirun --oversubscribe -np "$np" "$GRAINS" run "$BED/case.yaml" -o "$OUT" -q
+      measure "$OUT.m" mpirun --oversubscribe -np "$np" "$GRAINS" run "$BED/case.yaml" -o "$OUT" -q "$@"
     fi
-    "$PYTHON" - "$OUT/summary.json" "$BED/grains_np$np.m" "$N" "$np" >> "$ROWS" <<'PY'
+    "$PYTHON" - "$OUT/summary.json" "$OUT.m" "$N" "$np" "$LABEL${*:+ ($*)}" >> "$ROWS" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1])); wall, rss = open(sys.argv[2]).read().split(); n = int(sys.argv[3])
+np_ = int(sys.argv[4])
 pair = sum(v for k, v in s['stage_seconds'].items() if 'pair_contacts' in k)
+neigh = sum(v for k, v in s['stage_seconds'].items() if k.startswith('neighbor'))
 pairs = s['neighbor_pairs_per_step'] * s['steps']
 mem = s['memory']
 rss_n = mem['peak_resident_bytes'] / n
-print('| grains | %d | %s | %.3g | %.1f | %.0f | %.0f | %.1f | %.1f |' % (
-    n, sys.argv[4], s['particle_steps_per_second'], pair / pairs * 1e9 * int(sys.argv[4]), rss_n,
-    mem['counted_bytes_per_particle'], float(wall) - s['wall_time_s'], s['wall_time_s']))
+print('| grains | %s | %d | %s | %.3g | %.1f | %.2f | %.1f | %.0f | %.0f | %.1f | %.1f |' % (
+    sys.argv[5], n, np_, s['particle_steps_per_second'], pair / pairs * 1e9 * np_, s['neighbor_pairs_per_step'] / n,
+    neigh / (n * s['steps']) * 1e9 * np_, rss_n, mem['counted_bytes_per_particle'], float(wall) - s['wall_time_s'],
+    s['wall_time_s']))
 PY
     tail -1 "$ROWS"
   done
-  if [ -f "$BED/atoms.data" ] && command -v "$LIGGGHTS" > /dev/null; then
+  if [ -z "$*" ] && [ -f "$BED/atoms.data" ] && command -v "$LIGGGHTS" > /dev/null; then
     mkdir -p "$BED/liggghts"
     read -r _ E_L < <(python3 "$ROOT/bench/pour/match_damping.py" "$REST")
     sed -e "s#@DATA@#$BED/atoms.data#; s#@SKIN@#$SKIN#g; s#@E@#$E#; s#@NU@#$NU#; s#@MU@#$MU#" \
         -e "s#@E_LIGGGHTS@#$E_L#; s#@DT@#$DT#; s#@STEPS@#$STEPS#g" "$HERE/in.liggghts" > "$BED/liggghts/in.liggghts"
     (cd "$BED/liggghts" && measure ../liggghts.m "$LIGGGHTS" -in in.liggghts -log log.liggghts -echo none -screen none)
-    "$PYTHON" - "$BED/liggghts/log.liggghts" "$BED/liggghts.m" "$N" >> "$ROWS" <<'PY'
+    "$PYTHON" - "$BED/liggghts/log.liggghts" "$BED/liggghts.m" "$N" "$LABEL" >> "$ROWS" <<'PY'
 import re, sys
 log = open(sys.argv[1]).read(); wall, rss = open(sys.argv[2]).read().split(); n = int(sys.argv[3])
 m = re.search(r'Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps', log)
 loop, steps = float(m.group(1)), int(m.group(2))
-pair = float(re.search(r'^Pair\s+time \(%\) = ([0-9.eE+-]+)', log, re.M).group(1))
+pct = lambda name: float(re.search(r'^%s\s+time \(%%\) = ([0-9.eE+-]+)' % name, log, re.M).group(1))
 nb = re.search(r'Total # of neighbors = (\d+)', log)
-per_pair = pair / (int(nb.group(1)) * steps) * 1e9 if nb else float('nan')
-print('| LIGGGHTS | %d | 1 | %.3g | %.1f | %.0f | | %.1f | %.1f |' % (
-    n, n * steps / loop, per_pair, int(rss) / n, float(wall) - loop, loop))
+per_pair = pct('Pair') / (int(nb.group(1)) * steps) * 1e9 if nb else float('nan')
+per_grain = int(nb.group(1)) / n if nb else float('nan')
+print('| LIGGGHTS | %s | %d | 1 | %.3g | %.1f | %.2f | %.1f | %.0f | | %.1f | %.1f |' % (
+    sys.argv[4], n, n * steps / loop, per_pair, per_grain, pct('Neigh') / (n * steps) * 1e9, int(rss) / n,
+    float(wall) - loop, loop))
 PY
     tail -1 "$ROWS"
   fi
+}
+
+for size in $SIZES; do
+  KX=${size%x*}; KY=${size#*x}
+  BED="$WORK/bed_$size"
+  "$PYTHON" "$HERE/tile.py" "$SEED" "$KX" "$KY" "$STEPS" "$BED" --vtk 0 --liggghts-max "$LIGGGHTS_MAX"
+  run_bed "$BED" "mono $size"
+done
+
+# Wide size distributions (POLY: names of seeds in poly/, e.g. "uniform10
+# bimodal20"): each seed poured once into $WORK/seed_NAME, tiled POLY_TILE
+# (default 1x1), run with a skin per grain (the seeds' setting) and with the
+# largest grain's skin for all (neighbor.skin_per_grain=false), and in LIGGGHTS.
+for name in ${POLY:-}; do
+  PSEED="$WORK/seed_$name/frames/particles_000001.vtu"
+  if [ ! -f "$PSEED" ]; then
+    echo "== seed bed: $GRAINS run $HERE/poly/$name.yaml"
+    "$GRAINS" run "$HERE/poly/$name.yaml" -o "$WORK/seed_$name" -q
+  fi
+  size="${POLY_TILE:-1x1}"; KX=${size%x*}; KY=${size#*x}
+  BED="$WORK/bed_${name}_$size"
+  "$PYTHON" "$HERE/tile.py" "$PSEED" "$KX" "$KY" "$STEPS" "$BED" --vtk 0 --liggghts-max "$LIGGGHTS_MAX" \
+    --seed-case "$HERE/poly/$name.yaml"
+  run_bed "$BED" "$name $size"
+  RANKS=1 run_bed "$BED" "$name $size" --set neighbor.skin_per_grain=false
 done
 echo
-echo "| code | grains | ranks | particle-steps/s | ns per list pair (pair stage) | peak RSS B/grain | counted B/grain | set-up s | loop s |"
-echo "|---|---|---|---|---|---|---|---|---|"
+echo "| code | bed | grains | ranks | particle-steps/s | ns per list pair (pair stage) | list pairs per grain | ns per grain-step (neighbour stage) | peak RSS B/grain | counted B/grain | set-up s | loop s |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 cat "$ROWS"
 echo "== load after: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -2,6 +2,7 @@
 """Settled beds of any size for bench/scale, from one periodic seed bed.
 
   tile.py SEED.vtu KX KY STEPS OUTDIR [--vtk 0|1] [--liggghts-max N]
+          [--seed-case CASE.yaml]
 
 Repeats the seed's grains (the last frame of bench/scale/seed.yaml: a bed at
 rest in a box periodic in x and y) KX times along x and KY times along y. The
@@ -18,6 +19,11 @@ local structure, and only its size differs. Writes into OUTDIR:
 The grains start at rest where the seed left them; the first steps let the
 copies settle into each other's weight (nothing moves more than a small part
 of a diameter: the beds are alike at every size).
+
+--seed-case names the case that made the seed (default: seed.yaml here; the
+polydisperse seeds are in poly/): its box, physics and neighbour settings go
+into case.yaml. Polydisperse seeds keep each grain's radius (positions.txt
+carries it).
 """
 import os
 import re
@@ -53,11 +59,12 @@ def seed_params(case_path):
     dmax = [float(v) for v in re.search(r"max:\s*\[([^\]]*)\]", t).group(1).split(",")]
     return {"lo": dmin, "hi": dmax, "density": num("density"), "E": num("youngs_modulus"),
             "nu": num("poisson_ratio"), "e": num("restitution"), "mu": num("friction"),
-            "dt": num("dt"), "skin": num("skin")}
+            "dt": num("dt"), "skin": num("skin"),
+            "skin_per_grain": re.search(r"^\s*skin_per_grain:\s*true", t, re.M) is not None}
 
 
 CASE = """# A settled bed of {n} spheres for bench/scale (written by bench/scale/tile.py):
-# {kx} x {ky} copies of the seed bed of bench/scale/seed.yaml, periodic in x and y.
+# {kx} x {ky} copies of the seed bed of bench/scale/{seed_name}, periodic in x and y.
 title: scale_{n}
 domain:
   min: [0.0, 0.0, {zlo!r}]
@@ -84,6 +91,7 @@ time:
   end: {end!r}
 neighbor:
   skin: {skin!r}
+  skin_per_grain: {skin_per_grain}
   overlap_tolerance: 0.05  # a bed at rest carries its weight on overlaps of about 1 % of a radius
 output:
   every_steps: {steps}
@@ -110,6 +118,11 @@ def main():
         i = args.index("--vtk")
         vtk_out = "true" if args[i + 1] == "1" else "false"
         del args[i:i + 2]
+    seed_case = None
+    if "--seed-case" in args:
+        i = args.index("--seed-case")
+        seed_case = args[i + 1]
+        del args[i:i + 2]
     liggghts_max = None
     if "--liggghts-max" in args:
         i = args.index("--liggghts-max")
@@ -119,7 +132,8 @@ def main():
         sys.exit(__doc__)
     seed_vtu, kx, ky, steps, out = args[0], int(args[1]), int(args[2]), int(args[3]), args[4]
     here = os.path.dirname(os.path.abspath(__file__))
-    p = seed_params(os.path.join(here, "seed.yaml"))
+    seed_case = seed_case or os.path.join(here, "seed.yaml")
+    p = seed_params(seed_case)
     x, rad = read_seed(seed_vtu)
     lx0, ly0 = p["hi"][0] - p["lo"][0], p["hi"][1] - p["lo"][1]
     if p["lo"][0] != 0 or p["lo"][1] != 0:
@@ -137,13 +151,13 @@ def main():
     with open(os.path.join(out, "positions.txt"), "w") as f:
         f.write("# %d spheres: %d x %d copies of %s (bench/scale/tile.py)\n" % (n, kx, ky, seed_vtu))
         np.savetxt(f, np.column_stack([big, rr]), fmt="%.17g")
-    radius = float(rad[0])
-    if np.any(rad != radius):
-        sys.exit("tile.py: the seed should be monodisperse")
+    radius = float(rad.max())  # the file's radii replace it
     with open(os.path.join(out, "case.yaml"), "w") as f:
         f.write(CASE.format(n=n, kx=kx, ky=ky, zlo=p["lo"][2], lx=kx * lx0, ly=ky * ly0, zhi=zhi,
                             density=p["density"], E=p["E"], nu=p["nu"], e=p["e"], mu=p["mu"], r=radius,
-                            dt=p["dt"], end=steps * p["dt"], skin=p["skin"], steps=steps, vtk=vtk_out))
+                            dt=p["dt"], end=steps * p["dt"], skin=p["skin"], steps=steps, vtk=vtk_out,
+                            skin_per_grain="true" if p["skin_per_grain"] else "false",
+                            seed_name=os.path.relpath(os.path.abspath(seed_case), here)))
     if liggghts_max is None or n <= liggghts_max:
         write_liggghts_data(os.path.join(out, "atoms.data"), big, rr, p["density"], kx, ky,
                             (kx * lx0, ky * ly0, p["lo"][2], zhi))
@@ -151,6 +165,7 @@ def main():
         f.write("N=%d\nL_X=%r\nL_Y=%r\nZ_TOP=%r\nZ_HI=%r\nSTEPS=%d\nDT=%r\nSKIN=%r\nRADIUS=%r\n" %
                 (n, kx * lx0, ky * ly0, z_top, zhi, steps, p["dt"], p["skin"] * 2 * radius, radius))
         f.write("E=%r\nNU=%r\nREST=%r\nMU=%r\nZ_LO=%r\n" % (p["E"], p["nu"], p["e"], p["mu"], p["lo"][2]))
+        f.write("RMIN=%r\n" % float(rad.min()))
     print("tile.py: %d grains (%d x %d copies) in %s" % (n, kx, ky, out))
 
 

@@ -881,6 +881,7 @@ class CaseParser {
     if (!v_.check_map(n, d, "neighbor")) return;
     c_.scene.skin = v_.number(n, d, "skin", "neighbor", 0.1);
     c_.scene.sort_particles = v_.boolean(n, d, "sort", "neighbor", true);
+    c_.scene.skin_per_grain = v_.boolean(n, d, "skin_per_grain", "neighbor", false);
     c_.scene.overlap_tolerance = v_.number(n, d, "overlap_tolerance", "neighbor", 0.01);
   }
 

@@ -89,6 +89,7 @@ void write_neighbors(const h5::File& f, const sim::NeighborList& nl) {
               static_cast<std::size_t>(std::max(H, 1)), kHistoryUnits);
   f.write_scalar("/neighbor/history_size", static_cast<std::int32_t>(H), "");
   f.write_scalar("/neighbor/skin", nl.skin(), "m");
+  if (nl.skin_fraction() > 0) f.write_scalar("/neighbor/skin_per_grain", nl.skin_fraction(), "");
   f.write_vector("/neighbor/build_position", b.x, 1, "m");
   f.write_vector("/neighbor/build_row_id", b.row_id, 1, "");
   f.write_scalar("/neighbor/build_time", b.time, "s");
@@ -297,6 +298,8 @@ void write_checkpoint_parallel(const fs::path& file, sim::Scene& s, sim::IdBlock
                  static_cast<std::size_t>(std::max(H, 1)), b.entry_offset, H > 0 ? b.entry_total : 0, kHistoryUnits);
     f.write_scalar("/neighbor/history_size", static_cast<std::int32_t>(H), "");
     f.write_scalar("/neighbor/skin", s.neighbors.skin(), "m");
+    if (s.neighbors.skin_fraction() > 0)
+      f.write_scalar("/neighbor/skin_per_grain", s.neighbors.skin_fraction(), "");
     f.write_vector("/neighbor/build_position", std::vector<sim::Vec3>{}, 1, "m");
     f.write_vector_rows("/neighbor/build_row_id", q.id, 1, b.particle_offset, b.particle_total, "");
     f.write_scalar("/neighbor/build_time", s.clock.time, "s");
@@ -549,6 +552,10 @@ void check_compatible(const h5::File& f, sim::Scene& s) {
                           ": the checkpoint was written for different contact-law slots");
   if (f.read_scalar<double>("/neighbor/skin") != s.neighbors.skin())
     throw CheckpointError(file + ": the neighbour skin differs from the case's (neighbor.skin must not change)");
+  const double per_grain = f.exists("/neighbor/skin_per_grain") ? f.read_scalar<double>("/neighbor/skin_per_grain") : 0;
+  if (per_grain != s.neighbors.skin_fraction())
+    throw CheckpointError(file + ": written with neighbor.skin_per_grain " + (per_grain > 0 ? "true" : "false") +
+                          ", the case has " + (per_grain > 0 ? "false" : "true") + " (it must not change)");
   sim::for_each_type(sim::WallKinds{}, [&]<class K>() {
     const std::string ds = wall_position_dataset<K>();
     const std::size_t have = f.exists(ds) ? f.shape(ds).first : 0, want = s.walls.of<K>().size();

@@ -1,5 +1,6 @@
 #include "io/run/simulation.hpp"
 
+#include <array>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -145,6 +146,74 @@ void probe_output_dir(const std::filesystem::path& dir) {
                           "; choose another with -o");
   }
   std::filesystem::remove(probe, ec);
+}
+
+// Per rank, for docs/parallel.md's cost model (summary.json "ranks"): owned
+// grains, ghosts, interior grains (farther than the ghost cut-off from every
+// face the rank shares with a neighbour, itself across a periodic face
+// included), list pairs, messages and ghost bytes of a ghost refresh (one
+// step between builds), and the seconds of the pair and neighbour stages.
+// Collective: every rank calls it; each gets every rank's figures.
+struct RankFigures {
+  std::vector<std::int64_t> owned, ghosts, interior, pairs, messages, ghost_bytes;
+  std::vector<double> pair_seconds, neighbor_seconds;
+};
+
+RankFigures rank_figures(const Simulation& s) {
+  RankFigures f;
+  const auto& x = *s.scene.exchange;
+  const auto& comm = x.comm();
+  const auto& dec = x.decomposition();
+  const auto& p = s.scene.particles;
+  const int me = comm.rank();
+  const sim::Vec3 lo = dec.lo(me), hi = dec.hi(me);
+  const double cut = x.cutoff();
+  std::int64_t interior = 0, messages = 0;
+  std::array<bool, 3> low_face{}, high_face{};
+  for (int d = 0; d < 3; ++d) {
+    bool wraps = false;
+    const int down = dec.neighbor(me, d, -1, wraps), up = dec.neighbor(me, d, +1, wraps);
+    low_face[static_cast<std::size_t>(d)] = down >= 0;
+    high_face[static_cast<std::size_t>(d)] = up >= 0;
+    messages += (down >= 0 && down != me) + (up >= 0 && up != me);
+  }
+  for (std::size_t i = 0; i < p.n_owned(); ++i) {
+    bool in = true;
+    for (int d = 0; d < 3; ++d) {
+      const auto k = static_cast<std::size_t>(d);
+      in = in && (!low_face[k] || p.x[i][d] - lo[d] > cut) && (!high_face[k] || hi[d] - p.x[i][d] > cut);
+    }
+    interior += in;
+  }
+  double pair = 0, neigh = 0;
+  const auto names = s.pipeline.stage_names();
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    if (names[k].find("pair_contacts") != std::string::npos) pair += s.pipeline.stage_seconds()[k];
+    if (names[k].rfind("neighbor", 0) == 0) neigh += s.pipeline.stage_seconds()[k];
+  }
+  const auto ghosts = static_cast<std::int64_t>(p.n_ghost());
+  f.owned = comm.all_gather(static_cast<std::int64_t>(p.n_owned()));
+  f.ghosts = comm.all_gather(ghosts);
+  f.interior = comm.all_gather(interior);
+  f.pairs = comm.all_gather(static_cast<std::int64_t>(s.scene.neighbors.stats().pairs));
+  f.messages = comm.all_gather(messages);
+  f.ghost_bytes = comm.all_gather(ghosts * static_cast<std::int64_t>(p.kinematic_bytes()));
+  f.pair_seconds.assign(static_cast<std::size_t>(comm.size()), 0.0);
+  f.neighbor_seconds = f.pair_seconds;
+  f.pair_seconds[static_cast<std::size_t>(me)] = pair;
+  f.neighbor_seconds[static_cast<std::size_t>(me)] = neigh;
+  comm.sum_in_place(f.pair_seconds);
+  comm.sum_in_place(f.neighbor_seconds);
+  return f;
+}
+
+template <class T>
+std::string json_list(const std::vector<T>& v) {
+  std::ostringstream o;
+  o.precision(6);
+  o << "[";
+  for (std::size_t k = 0; k < v.size(); ++k) o << (k ? ", " : "") << v[k];
+  return o.str() + "]";
 }
 
 }  // namespace
@@ -350,6 +419,8 @@ RunSummary Runner::finish() {
   double counted = 0;
   for (auto& part : parts) counted += (part.bytes = comm.sum(part.bytes));
   const double peak_rss = comm.sum(sim::resident_bytes(true));
+  RankFigures ranks;
+  if (s.scene.exchange) ranks = rank_figures(s);
   if (!comm.root()) return r;
   std::ofstream j(opt_.out_dir / "summary.json");
   j.precision(10);
@@ -367,7 +438,13 @@ RunSummary Runner::finish() {
     const auto& x = s.scene.exchange->stats();
     j << "  \"decomposition\": \"" << s.scene.exchange->decomposition().describe() << "\",\n"
       << "  \"rebalances\": " << x.rebalances << ",\n  \"migrated_particles\": " << migrated << ",\n"
-      << "  \"load_imbalance\": " << x.imbalance << ",\n";
+      << "  \"load_imbalance\": " << x.imbalance << ",\n"
+      << "  \"ranks\": {\n    \"owned\": " << json_list(ranks.owned) << ",\n    \"ghosts\": "
+      << json_list(ranks.ghosts) << ",\n    \"interior\": " << json_list(ranks.interior)
+      << ",\n    \"list_pairs\": " << json_list(ranks.pairs) << ",\n    \"messages_per_step\": "
+      << json_list(ranks.messages) << ",\n    \"ghost_bytes_per_step\": " << json_list(ranks.ghost_bytes)
+      << ",\n    \"pair_seconds\": " << json_list(ranks.pair_seconds) << ",\n    \"neighbor_seconds\": "
+      << json_list(ranks.neighbor_seconds) << "\n  },\n";
   }
   j << "  \"setup_seconds\": {\"case\": " << s.c.read_seconds << ", \"scene\": " << s.build_seconds << "},\n";
   {

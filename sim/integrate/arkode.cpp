@@ -504,7 +504,7 @@ double ErkDriver::neighbours(double stop) {
   const auto& p = s.particles;
   // The plain skin trigger first, as in the Verlet pipeline's neighbour phase.
   run_neighbor_phase();
-  const double skin = s.neighbors.skin(), g = s.gravity.norm();
+  const double skin = s.neighbors.smallest_skin(), g = s.gravity.norm();
   double m = 0, vmax = 0;
   auto measure = [&] {
     double m2 = 0, v2 = 0;

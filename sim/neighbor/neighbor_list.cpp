@@ -61,7 +61,138 @@ struct CellGrid {
   }
 };
 
+// Wide size distributions (largest over smallest radius above this) are
+// searched by size class (collect_by_size_class).
+constexpr double kSizeClassRatio = 2.5;
+
+// The smallest skin of a pair among the first n particles: skin per grain f
+// (0: the one skin), radii less `growth` (their value at the build).
+double least_pair_skin(const ParticleStore& p, std::size_t n, double f, double skin, double growth) {
+  if (f <= 0) return skin;
+  double s = skin;
+  for (std::size_t i = 0; i < n; ++i) s = std::min(s, 2 * f * (p.radius[i] - growth));
+  return s;
+}
+
+// The cell grid of one size class: its members (particle indices) in cell
+// order, cells at least `cell` wide over the members' bounding box.
+struct ClassGrid {
+  Vec3 lo, inv;
+  std::array<int, 3> dims{1, 1, 1};
+  std::vector<std::uint32_t> cell_start, order;
+
+  ClassGrid() = default;
+  ClassGrid(const ParticleStore& p, const std::vector<std::uint32_t>& members, double cell) {
+    Vec3 hi = p.x[members[0]];
+    lo = hi;
+    for (auto i : members) lo = lo.cwiseMin(p.x[i]), hi = hi.cwiseMax(p.x[i]);
+    hi = hi.cwiseMax(lo + Vec3::Constant(1e-12));
+    const double m = static_cast<double>(members.size());
+    for (;;) {
+      for (int d = 0; d < 3; ++d) dims[d] = std::max(1, static_cast<int>(std::floor((hi[d] - lo[d]) / cell)));
+      if (static_cast<double>(dims[0]) * dims[1] * dims[2] <= 4.0 * m + 64) break;
+      cell *= 1.26;
+    }
+    inv = Vec3(dims[0] / (hi[0] - lo[0]), dims[1] / (hi[1] - lo[1]), dims[2] / (hi[2] - lo[2]));
+    cell_start.assign(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] + 1, 0);
+    std::vector<std::uint32_t> cell_id(members.size());
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      cell_id[k] = static_cast<std::uint32_t>(index(cell_of(p.x[members[k]])));
+      ++cell_start[cell_id[k] + 1];
+    }
+    std::partial_sum(cell_start.begin(), cell_start.end(), cell_start.begin());
+    order.resize(members.size());
+    std::vector<std::uint32_t> fill(cell_start.begin(), cell_start.end() - 1);
+    for (std::size_t k = 0; k < members.size(); ++k) order[fill[cell_id[k]]++] = members[k];
+  }
+  std::array<int, 3> cell_of(const Vec3& x) const {
+    std::array<int, 3> c;
+    for (int d = 0; d < 3; ++d) c[d] = std::clamp(static_cast<int>((x[d] - lo[d]) * inv[d]), 0, dims[d] - 1);
+    return c;
+  }
+  std::size_t index(const std::array<int, 3>& c) const {
+    return (static_cast<std::size_t>(c[2]) * dims[1] + c[1]) * dims[0] + c[0];
+  }
+};
+
 }  // namespace
+
+template <bool Bodies, bool Ghosts>
+void NeighborList::collect_by_size_class(const ParticleStore& p, double rmin, double rmax,
+                                         std::vector<std::uint32_t>& pi, std::vector<std::uint32_t>& pj) const {
+  const std::size_t n = p.size(), n_own = p.n_owned();
+  // Class k: radii in [rmin 2^k, rmin 2^(k+1)), the last class open above.
+  const int classes = std::min(8, 1 + static_cast<int>(std::floor(std::log2(rmax / rmin))));
+  std::vector<std::vector<std::uint32_t>> members(static_cast<std::size_t>(classes));
+  std::vector<double> class_rmax(static_cast<std::size_t>(classes), 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const int k = std::clamp(static_cast<int>(std::floor(std::log2(p.radius[i] / rmin))), 0, classes - 1);
+    members[static_cast<std::size_t>(k)].push_back(static_cast<std::uint32_t>(i));
+    class_rmax[static_cast<std::size_t>(k)] = std::max(class_rmax[static_cast<std::size_t>(k)], p.radius[i]);
+  }
+  // The widest cut-off of a pair within class k, and of one with a smaller
+  // class: 2 R_k + its skin + reach, R_k the class's largest radius.
+  std::vector<ClassGrid> grids;
+  grids.reserve(static_cast<std::size_t>(classes));
+  for (int k = 0; k < classes; ++k) {
+    const double R = class_rmax[static_cast<std::size_t>(k)];
+    const double s = skin_fraction_ > 0 ? std::min(2 * skin_fraction_ * R, skin_) : skin_;
+    if (members[static_cast<std::size_t>(k)].empty())
+      grids.emplace_back();  // no grains of this size
+    else
+      grids.emplace_back(p, members[static_cast<std::size_t>(k)], std::max(2 * R + s + reach_, 1e-300));
+  }
+  auto consider = [&](std::size_t i, std::size_t j) {
+    if constexpr (Ghosts)
+      if ((i >= n_own && j >= n_own) || p.id[i] == p.id[j]) return;
+    if constexpr (Bodies)
+      if (p.body[i] >= 0 && p.body[i] == p.body[j]) return;
+    const double cut = p.radius[i] + p.radius[j] + (pair_skin(p, i, j) + reach_);
+    if ((p.x[i] - p.x[j]).squaredNorm() < cut * cut) {
+      const bool i_first = p.id[i] < p.id[j];
+      pi.push_back(static_cast<std::uint32_t>(i_first ? i : j));
+      pj.push_back(static_cast<std::uint32_t>(i_first ? j : i));
+    }
+  };
+  static const int stencil[14][3] = {{0, 0, 0},  {1, 0, 0},  {-1, 1, 0}, {0, 1, 0},  {1, 1, 0},
+                                     {-1, -1, 1}, {0, -1, 1}, {1, -1, 1}, {-1, 0, 1}, {0, 0, 1},
+                                     {1, 0, 1},  {-1, 1, 1}, {0, 1, 1},  {1, 1, 1}};
+  for (int a = 0; a < classes; ++a) {
+    if (members[static_cast<std::size_t>(a)].empty()) continue;
+    const ClassGrid& g = grids[static_cast<std::size_t>(a)];
+    // Within the class: the half stencil.
+    for (int cz = 0; cz < g.dims[2]; ++cz)
+      for (int cy = 0; cy < g.dims[1]; ++cy)
+        for (int cx = 0; cx < g.dims[0]; ++cx) {
+          const std::size_t c = g.index({cx, cy, cz});
+          for (const auto& st : stencil) {
+            const int nx = cx + st[0], ny = cy + st[1], nz = cz + st[2];
+            if (nx < 0 || ny < 0 || nz < 0 || nx >= g.dims[0] || ny >= g.dims[1] || nz >= g.dims[2]) continue;
+            const std::size_t c2 = g.index({nx, ny, nz});
+            for (auto u = g.cell_start[c]; u < g.cell_start[c + 1]; ++u) {
+              const auto b0 = c2 == c ? u + 1 : g.cell_start[c2];
+              for (auto w = b0; w < g.cell_start[c2 + 1]; ++w) consider(g.order[u], g.order[w]);
+            }
+          }
+        }
+    // With every larger class: each grain of this class (in its cell order)
+    // against the 27 cells around it in the larger class's grid, whose cells
+    // are at least the widest cut-off of such a pair.
+    for (int b = a + 1; b < classes; ++b) {
+      if (members[static_cast<std::size_t>(b)].empty()) continue;
+      const ClassGrid& G = grids[static_cast<std::size_t>(b)];
+      for (auto i : g.order) {
+        const auto c = G.cell_of(p.x[i]);
+        for (int dz = std::max(c[2] - 1, 0); dz <= std::min(c[2] + 1, G.dims[2] - 1); ++dz)
+          for (int dy = std::max(c[1] - 1, 0); dy <= std::min(c[1] + 1, G.dims[1] - 1); ++dy)
+            for (int dx = std::max(c[0] - 1, 0); dx <= std::min(c[0] + 1, G.dims[0] - 1); ++dx) {
+              const std::size_t c2 = G.index({dx, dy, dz});
+              for (auto w = G.cell_start[c2]; w < G.cell_start[c2 + 1]; ++w) consider(i, G.order[w]);
+            }
+      }
+    }
+  }
+}
 
 std::vector<std::pair<const char*, std::size_t>> NeighborList::memory_parts() const {
   auto bytes = [](const auto& v) { return v.size() * sizeof(typename std::decay_t<decltype(v)>::value_type); };
@@ -82,6 +213,23 @@ bool NeighborList::needs_rebuild(const ParticleStore& p, const Walls& walls, dou
   const std::size_t n = p.n_owned();
   // Never built (a scene may start empty and fill by insertion): build.
   if (x_build_.size() != n || row_start.empty()) return true;
+  if (skin_fraction_ > 0) {
+    const double drift = image_speed_ * (time - build_time_) + image_travel_;
+    // Each grain i within its own share of the skin: 2 (d_i + growth) / s_i
+    // + drift / s_min <= 1 keeps d_i + d_j + drift below the skin of the pair
+    // (at least (s_i + s_j) / 2 and at least s_min). s_i from the radius at
+    // the build (at least the current one less the growth since).
+    const double c = 0.5 * (1 - drift / smallest_skin_);
+    double m2 = 0;
+    bool any = c <= 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double d2 = (p.x[i] - x_build_[i]).squaredNorm();
+      const double t = std::min(2 * skin_fraction_ * (p.radius[i] - growth_), skin_) * c - growth_;
+      m2 = std::max(m2, d2);
+      any = any || t < 0 || d2 > t * t;
+    }
+    return any || std::sqrt(m2) + growth_ + walls.max_displacement(time - build_time_) > skin_;
+  }
   double m2 = 0;
   for (std::size_t i = 0; i < n; ++i) m2 = std::max(m2, (p.x[i] - x_build_[i]).squaredNorm());
   const double m = std::sqrt(m2) + growth_;
@@ -149,7 +297,7 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
                   if ((i >= n_own && j >= n_own) || p.id[i] == p.id[j]) continue;
                 if constexpr (decltype(exclude_same_body)::value)
                   if (p.body[i] >= 0 && p.body[i] == p.body[j]) continue;
-                const double cut = p.radius[i] + p.radius[j] + (skin_ + reach_);
+                const double cut = p.radius[i] + p.radius[j] + (pair_skin(p, i, j) + reach_);
                 if ((p.x[i] - p.x[j]).squaredNorm() < cut * cut) {
                   const bool i_first = p.id[i] < p.id[j];
                   pi.push_back(static_cast<std::uint32_t>(i_first ? i : j));
@@ -161,7 +309,20 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
         }
   };
   const bool bodies = p.fields().has(Field::Body), ghosts = n > n_own;
-  if (bodies && ghosts)
+  double rmin = n > 0 ? p.radius[0] : 0, rmax = rmin;
+  for (std::size_t i = 1; i < n; ++i) rmin = std::min(rmin, p.radius[i]), rmax = std::max(rmax, p.radius[i]);
+  // The same pairs either way (each row is sorted below), so the choice
+  // changes only the time of the build.
+  if (rmax > kSizeClassRatio * rmin) {
+    if (bodies && ghosts)
+      collect_by_size_class<true, true>(p, rmin, rmax, pi, pj);
+    else if (bodies)
+      collect_by_size_class<true, false>(p, rmin, rmax, pi, pj);
+    else if (ghosts)
+      collect_by_size_class<false, true>(p, rmin, rmax, pi, pj);
+    else
+      collect_by_size_class<false, false>(p, rmin, rmax, pi, pj);
+  } else if (bodies && ghosts)
     collect(std::true_type{}, std::true_type{});
   else if (bodies)
     collect(std::true_type{}, std::false_type{});
@@ -169,6 +330,7 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
     collect(std::false_type{}, std::true_type{});
   else
     collect(std::false_type{}, std::false_type{});
+  smallest_skin_ = least_pair_skin(p, n, skin_fraction_, skin_, 0.0);
   if (frozen_) {  // two frozen grains never interact
     std::size_t kept = 0;
     for (std::size_t k = 0; k < pi.size(); ++k)
@@ -243,6 +405,7 @@ void NeighborList::restore(const ParticleStore& p, BuildState b) {
   growth_ = b.growth;
   image_travel_ = 0;
   stats_.pairs = partner.size();
+  smallest_skin_ = least_pair_skin(p, p.size(), skin_fraction_, skin_, growth_);
   may_touch.assign(partner.size(), 1);
   if (with_gather_) build_gather(p);
 }

@@ -11,6 +11,7 @@
 // The list is rebuilt when a particle may have closed the skin:
 // 2 max|x - x_build| > skin (pairs) or max|x - x_build| + wall travel > skin,
 // each with the radius growth since the build added to the displacement.
+#include <algorithm>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -31,7 +32,19 @@ class NeighborList {
     history_size_ = history_size;
     skin_ = skin;
   }
+  /// The largest skin of any pair (configure's): ghosts, wall near lists and
+  /// checkpoints use it.
   double skin() const { return skin_; }
+  /// A skin per grain (neighbor.skin_per_grain; 0: off): the pair (i, j) is
+  /// listed within ri + rj + min(f (ri + rj), skin()), i.e. each grain has a
+  /// skin of f times its own diameter, and the trigger asks each grain to have
+  /// moved less than half its own skin. Small grains of a wide size
+  /// distribution then keep small lists; the skin of the largest is skin().
+  void set_skin_fraction(double f) { skin_fraction_ = f; }
+  double skin_fraction() const { return skin_fraction_; }
+  /// The smallest skin of any pair at the last build (the skin, without a
+  /// skin per grain): what an integrator must not let two grains close.
+  double smallest_skin() const { return skin_fraction_ > 0 ? smallest_skin_ : skin_; }
   /// How far apart (m, beyond touching) a contact may still hold: a normal
   /// law whose contacts outlive touching (JKR) sets its largest pull-off
   /// separation. The lists, the wall near lists and the force loop's first
@@ -165,8 +178,22 @@ class NeighborList {
   void carry_history(const ParticleStore& p, const std::vector<std::uint32_t>& old_row_start,
                      const std::vector<std::uint32_t>& old_partner, const std::vector<double>& old_history);
   void build_gather(const ParticleStore& p);
+  /// Candidate pairs of a wide size distribution: one cell grid per size
+  /// class (radii within a factor 2), each sized by its own largest grain;
+  /// pairs of a class among themselves by the half stencil of its grid, pairs
+  /// with a larger class from each smaller grain into the larger class's grid
+  /// (27 cells). The same pairs as one grid, found with far fewer candidates.
+  template <bool Bodies, bool Ghosts>
+  void collect_by_size_class(const ParticleStore& p, double rmin, double rmax, std::vector<std::uint32_t>& pi,
+                             std::vector<std::uint32_t>& pj) const;
+  /// The skin of the pair (i, j) in the list's cut-off.
+  double pair_skin(const ParticleStore& p, std::size_t i, std::size_t j) const {
+    return skin_fraction_ > 0 ? std::min(skin_fraction_ * (p.radius[i] + p.radius[j]), skin_) : skin_;
+  }
   int history_size_ = 0;
   double skin_ = 0;
+  double skin_fraction_ = 0;
+  double smallest_skin_ = 0;
   double reach_ = 0;
   double build_time_ = 0;
   static void drop_frozen(const ParticleStore& p, std::vector<std::uint32_t>& near, NearItems& items);

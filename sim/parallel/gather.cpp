@@ -51,6 +51,7 @@ Scene gather_scene(Scene& s) {
   g.growth = s.growth;  // the same on every rank
   g.particles.configure(p.fields(), p.wall_history_size(), p.wall_tag_size());
   g.neighbors.configure(H, s.neighbors.skin());
+  g.neighbors.set_skin_fraction(s.neighbors.skin_fraction());
   g.neighbors.set_reach(s.neighbors.reach());
   g.neighbors.set_frozen(s.neighbors.frozen());
   if (!comm.root()) return g;

@@ -403,6 +403,7 @@ Scene build_scene(SceneConfig& c) {
   // Ellipsoid scenes keep the PW85 lambda of each pair after the law's history.
   s.neighbors.configure(need.history_size + (need.ellipsoids ? 1 : 0), c.skin * 2 * rmax);
   s.neighbors.set_frozen(c.has_frozen());
+  if (c.skin_per_grain) s.neighbors.set_skin_fraction(c.skin);
   s.neighbors.set_image_speed(std::abs(s.domain.shear_speed()));
   // Contacts that hold beyond touching (JKR): the lists reach the largest
   // pull-off separation (R* is at most the largest radius, against a wall).

@@ -165,6 +165,7 @@ struct SceneConfig {
   ArkodeConfig arkode;
   std::string integrator_where;  // file:line:column of time.integrator
   double skin = 0.1;       // neighbour skin as a fraction of the largest diameter
+  bool skin_per_grain = false;  // each grain's skin is `skin` times its own diameter
   bool sort_particles = true;
   ParallelConfig parallel;
   double overlap_tolerance = 0.01;  // initial overlaps above this fraction of the smaller radius are refused

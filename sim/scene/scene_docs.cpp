@@ -172,6 +172,11 @@ std::vector<EffectDoc> scene_docs() {
   d.push_back({"neighbor", "neighbor: {...}",
                "Linked-cell Verlet lists, rebuilt when a particle has moved half the skin.",
                {key("skin", K::Number, "skin as a fraction of the largest particle diameter").def("0.1").in(0, 10, true),
+                key("skin_per_grain", K::Bool,
+                    "each grain's skin is `skin` times its own diameter (a pair's: times the sum of the radii, at "
+                    "most the largest grain's skin), and each grain rebuilds the lists when it has moved half its "
+                    "own skin: small grains of a wide size distribution keep short lists (docs/memory.md)")
+                    .def("false"),
                 key("sort", K::Bool, "re-sort particles by cell at each rebuild (memory locality)").def("true"),
                 key("overlap_tolerance", K::Number,
                     "initial overlaps above this fraction of the smaller radius are refused")
