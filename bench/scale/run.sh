@@ -16,10 +16,12 @@
 # LIGGGHTS (default liggghts; LIGGGHTS_MAX default 1000000, 0 to skip),
 # PYTHON (with numpy and vtk; default /usr/bin/python3).
 #
-# Wide size distributions: POLY="uniform10 uniform20 bimodal10 bimodal20"
-# (seeds in poly/: size ratios 10 and 20) adds those beds, each with a skin
+# Wide size distributions: POLY="uniform10:2x2 uniform20 bimodal10:3x3
+# bimodal20:4x4" (seeds in poly/: size ratios 10 and 20) adds those beds, each with a skin
 # per grain and with one skin, beside LIGGGHTS; SIZES="" runs only them.
-# Their columns to read beside the mono bed's: ns per list pair (pair stage)
+# SETTLE=T continues each poly seed from rest for T s of simulated time first
+# (its grains stop rattling) and tiles that. Their columns to read beside the
+# mono bed's: ns per list pair (pair stage)
 # and ns per grain-step (neighbour stage).
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -27,7 +29,7 @@ ROOT="$(cd "$HERE/../.." && pwd)"
 GRAINS="${GRAINS:-$ROOT/build/grains}"
 WORK="${WORK:-/tmp/grains-bench-scale}"
 STEPS="${STEPS:-1000}"
-SIZES="${SIZES:-1x1 5x2 10x10}"
+SIZES="${SIZES-1x1 5x2 10x10}"
 RANKS="${RANKS:-1 2}"
 LIGGGHTS="${LIGGGHTS:-liggghts}"
 LIGGGHTS_MAX="${LIGGGHTS_MAX:-1000000}"
@@ -81,10 +83,11 @@ neigh = sum(v for k, v in s['stage_seconds'].items() if k.startswith('neighbor')
 pairs = s['neighbor_pairs_per_step'] * s['steps']
 mem = s['memory']
 rss_n = mem['peak_resident_bytes'] / n
-print('| grains | %s | %d | %s | %.3g | %.1f | %.2f | %.1f | %.0f | %.0f | %.1f | %.1f |' % (
+b = max(1, s['neighbor_builds'])
+print('| grains | %s | %d | %s | %.3g | %.1f | %.2f | %d | %.1f | %.2f | %.0f | %.0f | %.1f | %.1f |' % (
     sys.argv[5], n, np_, s['particle_steps_per_second'], pair / pairs * 1e9 * np_, s['neighbor_pairs_per_step'] / n,
-    neigh / (n * s['steps']) * 1e9 * np_, rss_n, mem['counted_bytes_per_particle'], float(wall) - s['wall_time_s'],
-    s['wall_time_s']))
+    s['neighbor_builds'], neigh / (n * s['steps']) * 1e9 * np_, neigh / (n * b) * 1e6 * np_, rss_n,
+    mem['counted_bytes_per_particle'], float(wall) - s['wall_time_s'], s['wall_time_s']))
 PY
     tail -1 "$ROWS"
   done
@@ -99,13 +102,15 @@ import re, sys
 log = open(sys.argv[1]).read(); wall, rss = open(sys.argv[2]).read().split(); n = int(sys.argv[3])
 m = re.search(r'Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps', log)
 loop, steps = float(m.group(1)), int(m.group(2))
-pct = lambda name: float(re.search(r'^%s\s+time \(%%\) = ([0-9.eE+-]+)' % name, log, re.M).group(1))
+sec = lambda name: float(re.search(r'^%s\s+time \(%%\) = ([0-9.eE+-]+)' % name, log, re.M).group(1))
 nb = re.search(r'Total # of neighbors = (\d+)', log)
-per_pair = pct('Pair') / (int(nb.group(1)) * steps) * 1e9 if nb else float('nan')
+per_pair = sec('Pair') / (int(nb.group(1)) * steps) * 1e9 if nb else float('nan')
 per_grain = int(nb.group(1)) / n if nb else float('nan')
-print('| LIGGGHTS | %s | %d | 1 | %.3g | %.1f | %.2f | %.1f | %.0f | | %.1f | %.1f |' % (
-    sys.argv[4], n, n * steps / loop, per_pair, per_grain, pct('Neigh') / (n * steps) * 1e9, int(rss) / n,
-    float(wall) - loop, loop))
+builds = int(re.search(r'Neighbor list builds = (\d+)', log).group(1))
+neigh = sec('Neigh')  # seconds (the number before the percentage)
+print('| LIGGGHTS | %s | %d | 1 | %.3g | %.1f | %.2f | %d | %.1f | %.2f | %.0f | | %.1f | %.1f |' % (
+    sys.argv[4], n, n * steps / loop, per_pair, per_grain, builds, neigh / (n * steps) * 1e9,
+    neigh / (n * max(1, builds)) * 1e6, int(rss) / n, float(wall) - loop, loop))
 PY
     tail -1 "$ROWS"
   fi
@@ -119,16 +124,34 @@ for size in $SIZES; do
 done
 
 # Wide size distributions (POLY: names of seeds in poly/, e.g. "uniform10
-# bimodal20"): each seed poured once into $WORK/seed_NAME, tiled POLY_TILE
-# (default 1x1), run with a skin per grain (the seeds' setting) and with the
+# bimodal20:3x3"): each seed poured once into $WORK/seed_NAME, tiled as the
+# name's :KXxKY says (default POLY_TILE, or 1x1: a bed as wide as 20 of its
+# largest grains has as many periodic images as grains, whose refresh each
+# step then dominates the neighbour stage; tile it to the width of the
+# monodisperse bed in cut-offs), run with a skin per grain (the seeds' setting) and with the
 # largest grain's skin for all (neighbor.skin_per_grain=false), and in LIGGGHTS.
-for name in ${POLY:-}; do
+for entry in ${POLY:-}; do
+  name="${entry%%:*}"; size="${POLY_TILE:-1x1}"
+  [ "$entry" != "$name" ] && size="${entry#*:}"
   PSEED="$WORK/seed_$name/frames/particles_000001.vtu"
   if [ ! -f "$PSEED" ]; then
     echo "== seed bed: $GRAINS run $HERE/poly/$name.yaml"
     "$GRAINS" run "$HERE/poly/$name.yaml" -o "$WORK/seed_$name" -q
   fi
-  size="${POLY_TILE:-1x1}"; KX=${size%x*}; KY=${size#*x}
+  if [ "${SETTLE:-0}" != 0 ]; then
+    # The seed at rest as it is, then SETTLE more seconds of simulated time:
+    # its last frame becomes the seed (bed_*_settled*).
+    SDIR="$WORK/settle_${name}_$SETTLE"
+    if [ ! -f "$SDIR/run/summary.json" ]; then
+      "$PYTHON" "$HERE/tile.py" "$PSEED" 1 1 1 "$SDIR" --vtk 1 --liggghts-max 0 --seed-case "$HERE/poly/$name.yaml"
+      nsettle=$("$PYTHON" -c "import sys; print(max(1, round($SETTLE / $(. "$SDIR/bed.env"; echo "$DT"))))")
+      echo "== settling $name for $SETTLE s ($nsettle steps)"
+      "$GRAINS" run "$SDIR/case.yaml" -o "$SDIR/run" -q --set time.end="$SETTLE" --set output.every_steps="$nsettle"
+    fi
+    PSEED="$(ls "$SDIR"/run/frames/particles_*.vtu | tail -1)"
+    size="${size}_settled$SETTLE"
+  fi
+  KX=${size%%x*}; KY=${size#*x}; KY=${KY%%_*}
   BED="$WORK/bed_${name}_$size"
   "$PYTHON" "$HERE/tile.py" "$PSEED" "$KX" "$KY" "$STEPS" "$BED" --vtk 0 --liggghts-max "$LIGGGHTS_MAX" \
     --seed-case "$HERE/poly/$name.yaml"
@@ -136,7 +159,7 @@ for name in ${POLY:-}; do
   RANKS=1 run_bed "$BED" "$name $size" --set neighbor.skin_per_grain=false
 done
 echo
-echo "| code | bed | grains | ranks | particle-steps/s | ns per list pair (pair stage) | list pairs per grain | ns per grain-step (neighbour stage) | peak RSS B/grain | counted B/grain | set-up s | loop s |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| code | bed | grains | ranks | particle-steps/s | ns per list pair (pair stage) | list pairs per grain | list builds | neighbour stage ns per grain-step | neighbour stage µs per grain per build | peak RSS B/grain | counted B/grain | set-up s | loop s |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 cat "$ROWS"
 echo "== load after: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -92,7 +92,7 @@ time:
 neighbor:
   skin: {skin!r}
   skin_per_grain: {skin_per_grain}
-  overlap_tolerance: 0.05  # a bed at rest carries its weight on overlaps of about 1 % of a radius
+  overlap_tolerance: {tolerance}  # {tolerance_why}
 output:
   every_steps: {steps}
   vtk: {vtk}
@@ -157,6 +157,10 @@ def main():
                             density=p["density"], E=p["E"], nu=p["nu"], e=p["e"], mu=p["mu"], r=radius,
                             dt=p["dt"], end=steps * p["dt"], skin=p["skin"], steps=steps, vtk=vtk_out,
                             skin_per_grain="true" if p["skin_per_grain"] else "false",
+                            tolerance=0.05 if rad.max() == rad.min() else 0.2,
+                            tolerance_why="a bed at rest carries its weight on overlaps of about 1 % of a radius"
+                            if rad.max() == rad.min() else
+                            "a small grain under a large one carries it on overlaps of 5-10 % of its radius",
                             seed_name=os.path.relpath(os.path.abspath(seed_case), here)))
     if liggghts_max is None or n <= liggghts_max:
         write_liggghts_data(os.path.join(out, "atoms.data"), big, rr, p["density"], kx, ky,

@@ -86,8 +86,12 @@ class PlacementGrid {
       }
     return d;
   }
+  /// Calls overlaps(j) for the spheres within `reach` of x (and some
+  /// beyond), until one returns true. reach: at most one cell by default.
   template <class Fn>
-  bool any_near(const Vec3& x, Fn&& overlaps) const {
+  bool any_near(const Vec3& x, Fn&& overlaps, double reach = 0) const {
+    reach = reach > 0 ? reach : cell_;
+    const int m = std::max(1, static_cast<int>(std::ceil(reach / cell_)));
     // x and its images across the periodic faces it is near.
     std::array<std::array<double, 2>, 3> shifts{};
     std::array<int, 3> n{1, 1, 1};
@@ -95,23 +99,23 @@ class PlacementGrid {
       shifts[k][0] = 0;
       if (!dom_.periodic[k]) continue;
       const double L = dom_.hi[k] - dom_.lo[k];
-      if (x[k] - dom_.lo[k] < cell_) shifts[k][n[k]++] = L;
-      else if (dom_.hi[k] - x[k] < cell_) shifts[k][n[k]++] = -L;
+      if (x[k] - dom_.lo[k] < reach) shifts[k][n[k]++] = L;
+      else if (dom_.hi[k] - x[k] < reach) shifts[k][n[k]++] = -L;
     }
     for (int a = 0; a < n[0]; ++a)
       for (int b = 0; b < n[1]; ++b)
         for (int c = 0; c < n[2]; ++c)
-          if (near_cells(Vec3(x[0] + shifts[0][a], x[1] + shifts[1][b], x[2] + shifts[2][c]), overlaps)) return true;
+          if (near_cells(Vec3(x[0] + shifts[0][a], x[1] + shifts[1][b], x[2] + shifts[2][c]), overlaps, m)) return true;
     return false;
   }
 
  private:
   template <class Fn>
-  bool near_cells(const Vec3& x, Fn& overlaps) const {
+  bool near_cells(const Vec3& x, Fn& overlaps, int m) const {
     const auto c = cell_of(x);
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
+    for (int dz = -m; dz <= m; ++dz)
+      for (int dy = -m; dy <= m; ++dy)
+        for (int dx = -m; dx <= m; ++dx) {
           auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
           if (it == cells_.end()) continue;
           for (auto j : it->second)
@@ -230,22 +234,43 @@ std::vector<PlacedParticle> place_particles(const SceneConfig& c) {
 }
 
 void check_overlaps(const SceneConfig& c, const std::vector<PlacedParticle>& p) {
-  double rmax = 0;
-  for (const auto& q : p) rmax = std::max(rmax, q.r);
   if (p.empty()) return;
-  PlacementGrid grid(2 * rmax, c.domain);
+  double rmin = p[0].r, rmax = 0;
+  for (const auto& q : p) rmin = std::min(rmin, q.r), rmax = std::max(rmax, q.r);
+  // A wide size distribution is checked by size class (radii within a factor
+  // 2, as the neighbour lists search it): one grid sized by the largest
+  // grain would hold hundreds of small grains per cell. Each grain looks into
+  // every class's grid as far as it and that class's largest grain reach.
+  const int classes =
+      rmax > 2.5 * rmin ? std::min(8, 1 + static_cast<int>(std::floor(std::log2(rmax / rmin)))) : 1;
+  auto class_of = [&](double r) {
+    return classes == 1 ? 0 : std::clamp(static_cast<int>(std::floor(std::log2(r / rmin))), 0, classes - 1);
+  };
+  std::vector<double> class_rmax(static_cast<std::size_t>(classes), 0.0);
+  for (const auto& q : p) {
+    auto& R = class_rmax[static_cast<std::size_t>(class_of(q.r))];
+    R = std::max(R, q.r);
+  }
+  std::vector<PlacementGrid> grids;
+  for (double R : class_rmax) grids.emplace_back(2 * std::max(R, rmin), c.domain);
   for (std::size_t i = 0; i < p.size(); ++i) {
     std::size_t other = 0;
-    const bool bad = grid.any_near(p[i].x, [&](std::size_t j) {
+    const auto test = [&](std::size_t j) {
       if (c.sets[p[i].set].frozen && c.sets[p[j].set].frozen) return false;  // frozen grains never meet
-      const double d = grid.delta(p[i].x, p[j].x).norm();
+      const double d = grids[0].delta(p[i].x, p[j].x).norm();
       const double ov = p[i].r + p[j].r - d;
       if (ov > c.overlap_tolerance * std::min(p[i].r, p[j].r)) {
         other = j;
         return true;
       }
       return false;
-    });
+    };
+    bool bad = false;
+    if (classes == 1)
+      bad = grids[0].any_near(p[i].x, test);
+    else
+      for (std::size_t k = 0; k < grids.size() && !bad; ++k)
+        if (class_rmax[k] > 0) bad = grids[k].any_near(p[i].x, test, p[i].r + class_rmax[k]);
     if (bad) {
       const auto& a = p[other];
       const auto& b = p[i];
@@ -255,7 +280,7 @@ void check_overlaps(const SceneConfig& c, const std::vector<PlacedParticle>& p) 
           return s.placement.where(q.index_in_set);
         return s.where;
       };
-      const double ov = a.r + b.r - grid.delta(a.x, b.x).norm();
+      const double ov = a.r + b.r - grids[0].delta(a.x, b.x).norm();
       throw SetupError(where(b) + ": initial particles overlap: particle " + std::to_string(b.index_in_set) +
                        " of set '" + c.sets[b.set].name + "' and particle " + std::to_string(a.index_in_set) +
                        " of set '" + c.sets[a.set].name + "' overlap by " + fmt(ov) + " m (" +
@@ -267,7 +292,7 @@ void check_overlaps(const SceneConfig& c, const std::vector<PlacedParticle>& p) 
                        ")" +
                        (where(a) != where(b) ? " (other particle at " + where(a) + ")" : ""));
     }
-    grid.insert(p[i].x, p[i].r, i);
+    grids[static_cast<std::size_t>(class_of(p[i].r))].insert(p[i].x, p[i].r, i);
   }
 }
 

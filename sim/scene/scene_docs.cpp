@@ -175,7 +175,7 @@ std::vector<EffectDoc> scene_docs() {
                 key("skin_per_grain", K::Bool,
                     "each grain's skin is `skin` times its own diameter (a pair's: times the sum of the radii, at "
                     "most the largest grain's skin), and each grain rebuilds the lists when it has moved half its "
-                    "own skin: small grains of a wide size distribution keep short lists (docs/memory.md)")
+                    "own skin: small grains of a wide size distribution keep short lists (docs/neighbor.md)")
                     .def("false"),
                 key("sort", K::Bool, "re-sort particles by cell at each rebuild (memory locality)").def("true"),
                 key("overlap_tolerance", K::Number,

@@ -124,6 +124,36 @@ TEST(CaseErrors, OverlappingInitialParticles) {
             std::string::npos) << m;
 }
 
+// A wide size distribution is checked by size class (a grid per factor 2 of
+// radius): a small grain overlapping a large one is found whichever comes
+// first in the file, far from the small grains' cells.
+TEST(CaseErrors, OverlappingInitialParticlesOfWideSizes) {
+  auto dir = std::filesystem::temp_directory_path() / "grains_test_overlap_wide";
+  std::filesystem::create_directories(dir);
+  for (const bool small_first : {false, true}) {
+    {
+      std::ofstream f(dir / "pos.txt");
+      f << "# x y z r\n0.001 0.001 0.001 0.0002\n";
+      if (small_first)
+        f << "0.0071 0.005 0.005 0.0002\n0.005 0.005 0.005 0.002\n";
+      else
+        f << "0.005 0.005 0.005 0.002\n0.0071 0.005 0.005 0.0002\n";
+    }
+    auto yaml = replace(kGood, "count: 10\n    placement: {type: random_fill, region: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}}",
+                        "placement: {type: file, path: " + (dir / "pos.txt").string() + "}");
+    const auto m = errors_of(yaml);
+    EXPECT_NE(m.find((dir / "pos.txt").string() + ":4: initial particles overlap: particle 2 of set 'set0' and particle 1 of set 'set0' overlap by 0.0001 m (50% of the smaller radius"),
+              std::string::npos) << m;
+  }
+  {  // apart by a hair: accepted
+    std::ofstream f(dir / "pos.txt");
+    f << "# x y z r\n0.001 0.001 0.001 0.0002\n0.005 0.005 0.005 0.002\n0.00721 0.005 0.005 0.0002\n";
+  }
+  auto yaml = replace(kGood, "count: 10\n    placement: {type: random_fill, region: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}}",
+                      "placement: {type: file, path: " + (dir / "pos.txt").string() + "}");
+  EXPECT_NO_THROW((void)io::make_simulation(io::parse_case(yaml, "case.yaml")));
+}
+
 TEST(CaseErrors, OverfullFillRegion) {
   const auto m = errors_of(replace(kGood, "count: 10", "count: 5000"));
   EXPECT_NE(m.find("case.yaml:11:5: particle set 'set0': placed only"), std::string::npos) << m;
