@@ -61,6 +61,11 @@ struct CellGrid {
   }
 };
 
+// The own cell and the 13 forward neighbour cells: each pair of cells once.
+constexpr int kHalfStencil[14][3] = {{0, 0, 0},  {1, 0, 0},  {-1, 1, 0}, {0, 1, 0},  {1, 1, 0},
+                                     {-1, -1, 1}, {0, -1, 1}, {1, -1, 1}, {-1, 0, 1}, {0, 0, 1},
+                                     {1, 0, 1},  {-1, 1, 1}, {0, 1, 1},  {1, 1, 1}};
+
 // Wide size distributions (largest over smallest radius above this) are
 // searched by size class (collect_by_size_class).
 constexpr double kSizeClassRatio = 2.5;
@@ -115,6 +120,25 @@ struct ClassGrid {
   }
 };
 
+// The pair test of a build: (i, j) goes into the candidate pairs (smaller
+// global id first) when it is within the cut-off r_i + r_j + skin(i, j).
+// Left out: two ghosts, a grain and its own image (Ghosts), two balls of one
+// clump (Bodies).
+template <bool Bodies, bool Ghosts, class Skin>
+inline void consider_pair(const ParticleStore& p, std::size_t n_own, std::size_t i, std::size_t j, Skin&& skin,
+                          std::vector<std::uint32_t>& pi, std::vector<std::uint32_t>& pj) {
+  if constexpr (Ghosts)
+    if ((i >= n_own && j >= n_own) || p.id[i] == p.id[j]) return;
+  if constexpr (Bodies)
+    if (p.body[i] >= 0 && p.body[i] == p.body[j]) return;
+  const double cut = p.radius[i] + p.radius[j] + skin(i, j);
+  if ((p.x[i] - p.x[j]).squaredNorm() < cut * cut) {
+    const bool i_first = p.id[i] < p.id[j];
+    pi.push_back(static_cast<std::uint32_t>(i_first ? i : j));
+    pj.push_back(static_cast<std::uint32_t>(i_first ? j : i));
+  }
+}
+
 }  // namespace
 
 template <bool Bodies, bool Ghosts>
@@ -142,21 +166,8 @@ void NeighborList::collect_by_size_class(const ParticleStore& p, double rmin, do
     else
       grids.emplace_back(p, members[static_cast<std::size_t>(k)], std::max(2 * R + s + reach_, 1e-300));
   }
-  auto consider = [&](std::size_t i, std::size_t j) {
-    if constexpr (Ghosts)
-      if ((i >= n_own && j >= n_own) || p.id[i] == p.id[j]) return;
-    if constexpr (Bodies)
-      if (p.body[i] >= 0 && p.body[i] == p.body[j]) return;
-    const double cut = p.radius[i] + p.radius[j] + (pair_skin(p, i, j) + reach_);
-    if ((p.x[i] - p.x[j]).squaredNorm() < cut * cut) {
-      const bool i_first = p.id[i] < p.id[j];
-      pi.push_back(static_cast<std::uint32_t>(i_first ? i : j));
-      pj.push_back(static_cast<std::uint32_t>(i_first ? j : i));
-    }
-  };
-  static const int stencil[14][3] = {{0, 0, 0},  {1, 0, 0},  {-1, 1, 0}, {0, 1, 0},  {1, 1, 0},
-                                     {-1, -1, 1}, {0, -1, 1}, {1, -1, 1}, {-1, 0, 1}, {0, 0, 1},
-                                     {1, 0, 1},  {-1, 1, 1}, {0, 1, 1},  {1, 1, 1}};
+  const auto skin = [&](std::size_t i, std::size_t j) { return pair_skin(p, i, j) + reach_; };
+  auto consider = [&](std::size_t i, std::size_t j) { consider_pair<Bodies, Ghosts>(p, n_own, i, j, skin, pi, pj); };
   for (int a = 0; a < classes; ++a) {
     if (members[static_cast<std::size_t>(a)].empty()) continue;
     const ClassGrid& g = grids[static_cast<std::size_t>(a)];
@@ -165,7 +176,7 @@ void NeighborList::collect_by_size_class(const ParticleStore& p, double rmin, do
       for (int cy = 0; cy < g.dims[1]; ++cy)
         for (int cx = 0; cx < g.dims[0]; ++cx) {
           const std::size_t c = g.index({cx, cy, cz});
-          for (const auto& st : stencil) {
+          for (const auto& st : kHalfStencil) {
             const int nx = cx + st[0], ny = cy + st[1], nz = cz + st[2];
             if (nx < 0 || ny < 0 || nz < 0 || nx >= g.dims[0] || ny >= g.dims[1] || nz >= g.dims[2]) continue;
             const std::size_t c2 = g.index({nx, ny, nz});
@@ -272,20 +283,18 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   std::vector<std::uint32_t> pi, pj;
   pi.reserve(8 * n);
   pj.reserve(8 * n);
-  static const int stencil[14][3] = {{0, 0, 0},  {1, 0, 0},  {-1, 1, 0}, {0, 1, 0},  {1, 1, 0},
-                                     {-1, -1, 1}, {0, -1, 1}, {1, -1, 1}, {-1, 0, 1}, {0, 0, 1},
-                                     {1, 0, 1},  {-1, 1, 1}, {0, 1, 1},  {1, 1, 1}};
   // Balls of the same clump never interact: in scenes with clumps (the
   // `body` field exists) their pairs are left out here, by a separate
   // instantiation of the loop, so sphere scenes pay nothing for the check.
   // Likewise ghost-ghost pairs are left out only when ghosts exist.
+  const auto skin = [&](std::size_t i, std::size_t j) { return pair_skin(p, i, j) + reach_; };
   auto collect = [&](auto exclude_same_body, auto with_ghosts) {
     for (int cz = 0; cz < dims[2]; ++cz)
       for (int cy = 0; cy < dims[1]; ++cy)
         for (int cx = 0; cx < dims[0]; ++cx) {
           const std::size_t c = (static_cast<std::size_t>(cz) * dims[1] + cy) * dims[0] + cx;
           for (int s = 0; s < 14; ++s) {
-            const int nx = cx + stencil[s][0], ny = cy + stencil[s][1], nz = cz + stencil[s][2];
+            const int nx = cx + kHalfStencil[s][0], ny = cy + kHalfStencil[s][1], nz = cz + kHalfStencil[s][2];
             if (nx < 0 || ny < 0 || nz < 0 || nx >= dims[0] || ny >= dims[1] || nz >= dims[2]) continue;
             const std::size_t c2 = (static_cast<std::size_t>(nz) * dims[1] + ny) * dims[0] + nx;
             for (auto a = cell_start[c]; a < cell_start[c + 1]; ++a) {
@@ -293,16 +302,8 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
               const auto b0 = s == 0 ? a + 1 : cell_start[c2];
               for (auto b = b0; b < cell_start[c2 + 1]; ++b) {
                 const std::size_t j = order[b];
-                if constexpr (decltype(with_ghosts)::value)
-                  if ((i >= n_own && j >= n_own) || p.id[i] == p.id[j]) continue;
-                if constexpr (decltype(exclude_same_body)::value)
-                  if (p.body[i] >= 0 && p.body[i] == p.body[j]) continue;
-                const double cut = p.radius[i] + p.radius[j] + (pair_skin(p, i, j) + reach_);
-                if ((p.x[i] - p.x[j]).squaredNorm() < cut * cut) {
-                  const bool i_first = p.id[i] < p.id[j];
-                  pi.push_back(static_cast<std::uint32_t>(i_first ? i : j));
-                  pj.push_back(static_cast<std::uint32_t>(i_first ? j : i));
-                }
+                consider_pair<decltype(exclude_same_body)::value, decltype(with_ghosts)::value>(p, n_own, i, j, skin,
+                                                                                                  pi, pj);
               }
             }
           }
