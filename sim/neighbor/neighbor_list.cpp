@@ -187,16 +187,22 @@ void NeighborList::collect_by_size_class(const ParticleStore& p, double rmin, do
           }
         }
     // With every larger class: each grain of this class (in its cell order)
-    // against the 27 cells around it in the larger class's grid, whose cells
-    // are at least the widest cut-off of such a pair.
+    // against the cells of the larger class's grid that its reach to that
+    // class (its radius, the class's largest, their skin) touches; the cells
+    // being at least that wide, at most 27, and about 9 for a small grain.
     for (int b = a + 1; b < classes; ++b) {
       if (members[static_cast<std::size_t>(b)].empty()) continue;
       const ClassGrid& G = grids[static_cast<std::size_t>(b)];
+      const double R = class_rmax[static_cast<std::size_t>(b)];
       for (auto i : g.order) {
-        const auto c = G.cell_of(p.x[i]);
-        for (int dz = std::max(c[2] - 1, 0); dz <= std::min(c[2] + 1, G.dims[2] - 1); ++dz)
-          for (int dy = std::max(c[1] - 1, 0); dy <= std::min(c[1] + 1, G.dims[1] - 1); ++dy)
-            for (int dx = std::max(c[0] - 1, 0); dx <= std::min(c[0] + 1, G.dims[0] - 1); ++dx) {
+        const double ri = p.radius[i];
+        const double s = skin_fraction_ > 0 ? std::min(skin_fraction_ * (ri + R), skin_) : skin_;
+        // (padded by 1e-12 of itself: a partner at the reach is never missed by rounding)
+        const double reach = (ri + R + s + reach_) * (1 + 1e-12);
+        const auto lo = G.cell_of(p.x[i] - Vec3::Constant(reach)), hi = G.cell_of(p.x[i] + Vec3::Constant(reach));
+        for (int dz = lo[2]; dz <= hi[2]; ++dz)
+          for (int dy = lo[1]; dy <= hi[1]; ++dy)
+            for (int dx = lo[0]; dx <= hi[0]; ++dx) {
               const std::size_t c2 = G.index({dx, dy, dz});
               for (auto w = G.cell_start[c2]; w < G.cell_start[c2 + 1]; ++w) consider(i, G.order[w]);
             }
