@@ -1,5 +1,7 @@
 #include "sim/neighbor/neighbor_list.hpp"
 
+#include "sim/neighbor/size_classes.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -65,10 +67,6 @@ struct CellGrid {
 constexpr int kHalfStencil[14][3] = {{0, 0, 0},  {1, 0, 0},  {-1, 1, 0}, {0, 1, 0},  {1, 1, 0},
                                      {-1, -1, 1}, {0, -1, 1}, {1, -1, 1}, {-1, 0, 1}, {0, 0, 1},
                                      {1, 0, 1},  {-1, 1, 1}, {0, 1, 1},  {1, 1, 1}};
-
-// Wide size distributions (largest over smallest radius above this) are
-// searched by size class (collect_by_size_class).
-constexpr double kSizeClassRatio = 2.5;
 
 // The smallest skin of a pair among the first n particles: skin per grain f
 // (0: the one skin), radii less `growth` (their value at the build).
@@ -145,12 +143,12 @@ template <bool Bodies, bool Ghosts>
 void NeighborList::collect_by_size_class(const ParticleStore& p, double rmin, double rmax,
                                          std::vector<std::uint32_t>& pi, std::vector<std::uint32_t>& pj) const {
   const std::size_t n = p.size(), n_own = p.n_owned();
-  // Class k: radii in [rmin 2^k, rmin 2^(k+1)), the last class open above.
-  const int classes = std::min(8, 1 + static_cast<int>(std::floor(std::log2(rmax / rmin))));
+  const SizeClasses size_class(rmin, rmax);
+  const int classes = size_class.count;
   std::vector<std::vector<std::uint32_t>> members(static_cast<std::size_t>(classes));
   std::vector<double> class_rmax(static_cast<std::size_t>(classes), 0.0);
   for (std::size_t i = 0; i < n; ++i) {
-    const int k = std::clamp(static_cast<int>(std::floor(std::log2(p.radius[i] / rmin))), 0, classes - 1);
+    const int k = size_class.of(p.radius[i]);
     members[static_cast<std::size_t>(k)].push_back(static_cast<std::uint32_t>(i));
     class_rmax[static_cast<std::size_t>(k)] = std::max(class_rmax[static_cast<std::size_t>(k)], p.radius[i]);
   }
@@ -320,7 +318,7 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   for (std::size_t i = 1; i < n; ++i) rmin = std::min(rmin, p.radius[i]), rmax = std::max(rmax, p.radius[i]);
   // The same pairs either way (each row is sorted below), so the choice
   // changes only the time of the build.
-  if (rmax > kSizeClassRatio * rmin) {
+  if (SizeClasses(rmin, rmax).count > 1) {
     if (bodies && ghosts)
       collect_by_size_class<true, true>(p, rmin, rmax, pi, pj);
     else if (bodies)

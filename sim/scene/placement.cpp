@@ -1,5 +1,7 @@
 #include "sim/scene/placement.hpp"
 
+#include "sim/neighbor/size_classes.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -241,11 +243,9 @@ void check_overlaps(const SceneConfig& c, const std::vector<PlacedParticle>& p) 
   // 2, as the neighbour lists search it): one grid sized by the largest
   // grain would hold hundreds of small grains per cell. Each grain looks into
   // every class's grid as far as it and that class's largest grain reach.
-  const int classes =
-      rmax > 2.5 * rmin ? std::min(8, 1 + static_cast<int>(std::floor(std::log2(rmax / rmin)))) : 1;
-  auto class_of = [&](double r) {
-    return classes == 1 ? 0 : std::clamp(static_cast<int>(std::floor(std::log2(r / rmin))), 0, classes - 1);
-  };
+  const SizeClasses size_class(rmin, rmax);
+  const int classes = size_class.count;
+  auto class_of = [&](double r) { return size_class.of(r); };
   std::vector<double> class_rmax(static_cast<std::size_t>(classes), 0.0);
   for (const auto& q : p) {
     auto& R = class_rmax[static_cast<std::size_t>(class_of(q.r))];
