@@ -1,17 +1,66 @@
 #include "contact/clump/distance_grid.hpp"
 
-#include <openvdb/openvdb.h>
-#include <openvdb/tools/MeshToVolume.h>
+#include <dlfcn.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <limits>
 #include <memory>
-#include <cmath>
 #include <mutex>
 #include <stdexcept>
+#include <string>
+
+#include "contact/clump/vdb/vdb_module.hpp"
 
 namespace grains::clump {
+
+namespace {
+
+// OpenVDB is loaded the first time a grid is computed (vdb_module.hpp):
+// from $GRAINS_VDB_MODULE if set (and only there), else where the build put
+// it, else beside the running program, else by the loader's search path.
+GrainsVdbSignedDistance vdb_signed_distance() {
+  static GrainsVdbSignedDistance fn = nullptr;
+  static std::string failure;
+  static std::once_flag once;
+  std::call_once(once, [] {
+    std::vector<std::string> tried;
+    if (const char* env = std::getenv("GRAINS_VDB_MODULE"); env && *env) {
+      tried.emplace_back(env);  // the user's choice, and only it
+    } else {
+#ifdef GRAINS_VDB_MODULE_PATH
+      tried.emplace_back(GRAINS_VDB_MODULE_PATH);
+#endif
+      std::error_code ec;
+      const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+      if (!ec) tried.push_back((exe.parent_path() / "libgrains_vdb.so").string());
+      tried.emplace_back("libgrains_vdb.so");
+    }
+    std::string why;
+    for (const auto& path : tried) {
+      void* h = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+      if (!h) {
+        const char* e = dlerror();
+        why += "\n  " + path + ": " + (e ? e : "cannot be loaded");
+        continue;
+      }
+      fn = reinterpret_cast<GrainsVdbSignedDistance>(dlsym(h, kGrainsVdbSymbol));
+      if (fn) return;  // kept loaded to the end of the process
+      why += "\n  " + path + ": has no " + kGrainsVdbSymbol;
+      dlclose(h);
+    }
+    failure = "the sphere decomposition of a mesh needs grains's OpenVDB module (libgrains_vdb.so, built beside "
+              "the grains program), which could not be loaded; set GRAINS_VDB_MODULE to its path. Tried:" + why;
+  });
+  if (!fn) throw std::runtime_error(failure);
+  return fn;
+}
+
+}  // namespace
 
 double half_cube_edge(const mesh::TriangleMesh& mesh) {
   return 0.5 * (mesh.bbox_max() - mesh.bbox_min()).maxCoeff();
@@ -62,8 +111,7 @@ DistanceGrid compute_distance_grid(const mesh::TriangleMesh& mesh, int n, const 
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   if (n < 2) throw std::invalid_argument("distance grid needs at least 2 nodes per axis, got " + std::to_string(n));
-  static std::once_flag init;
-  std::call_once(init, [] { openvdb::initialize(); });
+  const auto signed_distance = vdb_signed_distance();
 
   DistanceGrid g;
   g.n = n;
@@ -75,34 +123,25 @@ DistanceGrid compute_distance_grid(const mesh::TriangleMesh& mesh, int n, const 
   // Index space of the VDB grid = our node indices: world = origin + h * ijk.
   // The mesh is shifted by -origin before the single-precision conversion so
   // that large offsets do not cost digits.
-  auto xform = openvdb::math::Transform::createLinearTransform(g.h);
-  std::vector<openvdb::Vec3s> points;
-  points.reserve(mesh.vertices.size());
+  std::vector<float> points;
+  points.reserve(3 * mesh.vertices.size());
   for (const auto& v : mesh.vertices) {
     const Eigen::Vector3d q = v - g.origin;
-    points.emplace_back(float(q.x()), float(q.y()), float(q.z()));
+    points.insert(points.end(), {float(q.x()), float(q.y()), float(q.z())});
   }
-  std::vector<openvdb::Vec3I> tris;
-  tris.reserve(mesh.faces.size());
   // OpenVDB's sign comes from a flood fill of the exterior, independent of
   // the winding; it needs a closed surface.
-  for (const auto& f : mesh.faces) tris.emplace_back(f[0], f[1], f[2]);
-  const std::vector<openvdb::Vec4I> quads;
+  std::vector<unsigned> tris;
+  tris.reserve(3 * mesh.faces.size());
+  for (const auto& f : mesh.faces)
+    tris.insert(tris.end(), {static_cast<unsigned>(f[0]), static_cast<unsigned>(f[1]), static_cast<unsigned>(f[2])});
   const float ex_band = 3.0f;
   const float in_band = static_cast<float>(n) * 2.0f;  // covers the whole interior
-  auto grid = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(*xform, points, tris, quads, ex_band, in_band);
-
   g.phi.assign(size_t(n) * n * n, 0.0);
-  auto acc = grid->getConstAccessor();
-  for (int k = 0; k < n; ++k) {
-    for (int j = 0; j < n; ++j) {
-      for (int i = 0; i < n; ++i) {
-        // OpenVDB stores distances in world units of the grid (voxel size h).
-        g.phi[g.index(i, j, k)] = acc.getValue(openvdb::Coord(i, j, k));
-      }
-    }
-  }
-  grid.reset();
+  char err[512] = "";
+  if (signed_distance(points.data(), mesh.vertices.size(), tris.data(), mesh.faces.size(), g.h, n, ex_band, in_band,
+                      g.phi.data(), err, sizeof err) != 0)
+    throw std::runtime_error(err);
   const auto t1 = Clock::now();
   g.seconds_vdb = std::chrono::duration<double>(t1 - t0).count();
 
