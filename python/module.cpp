@@ -28,6 +28,7 @@
 #include "io/case/case.hpp"
 #include "io/checkpoint/checkpoint.hpp"
 #include "io/output/progress.hpp"
+#include "io/run/allocator.hpp"
 #include "io/run/simulation.hpp"
 #include "postprocess/analysis.hpp"
 #include "sim/integrate/arkode.hpp"
@@ -671,6 +672,7 @@ std::int64_t steps_for(const sim::Clock& c, double t) {
 PYBIND11_MODULE(_core, m) {
   m.doc() = "grains: discrete-element simulation of granular matter (compiled core; see docs/python.md)";
   m.attr("__version__") = std::string(kVersion);
+  io::set_allocator_policy();  // large per-grain arrays straight from the kernel (io/run/allocator.hpp)
 
   // Errors carry the located messages the command line prints.
   static py::exception<io::CaseError> case_error(m, "CaseError", PyExc_ValueError);

@@ -14,6 +14,7 @@
 #include "io/checkpoint/checkpoint.hpp"
 #include "io/cli/commands.hpp"
 #include "io/output/progress.hpp"
+#include "io/run/allocator.hpp"
 #include "io/run/simulation.hpp"
 #include "sim/parallel/comm.hpp"
 
@@ -192,6 +193,7 @@ int cmd_docs(const std::vector<std::string>& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  grains::io::set_allocator_policy();
   // MPI starts only when mpirun launched us; a plain run stays serial.
   grains::sim::Comm::init(&argc, &argv);
   struct Finalize {

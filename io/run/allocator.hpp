@@ -1,0 +1,26 @@
+#pragma once
+// How the process asks the C library for memory (issue 26: memory per grain).
+
+namespace grains::io {
+
+/// Blocks of 4 MiB and more (a per-grain array from about 170,000 grains
+/// on) are mapped from the kernel when allocated and returned to it when
+/// freed; smaller ones reuse the heap as before. glibc's default raises
+/// that threshold as large blocks are freed (up to 32 MiB), after which
+/// the large temporaries of set-up and of each neighbour build stay in the
+/// heap, resident, and the vectors carved from them are resident over their
+/// whole capacity: 65 bytes per grain more in a settled bed of 10^6 grains
+/// (bench/RESULTS.md). A fixed threshold of 128 KiB would do the same but
+/// costs the 10k pour about 20 % in page faults at its frequent builds; the
+/// heap keeps up to 8 MiB free at its top for the same reason.
+/// Called once, first thing, by the command line and the Python module;
+/// does nothing outside glibc.
+void set_allocator_policy();
+
+/// Returns the heap's free pages to the kernel. Set-up frees about 2
+/// million small blocks (the overlap check's cell lists, a positions file's
+/// parse) that glibc would otherwise keep resident for the whole run: 67
+/// bytes per grain in a bed of 10^6 grains. Called once set-up is done.
+void release_free_memory();
+
+}  // namespace grains::io
