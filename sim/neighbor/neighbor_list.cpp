@@ -424,50 +424,71 @@ void NeighborList::import_history(std::int64_t a, std::int64_t b, const double* 
 void NeighborList::carry_history(const ParticleStore& p, const std::vector<std::uint32_t>& old_row_start,
                                  const std::vector<std::uint32_t>& old_partner,
                                  const std::vector<double>& old_history) {
+  // Each new entry (ids a < b) takes the history of the first entry with
+  // the same ids and a non-zero history in the previous build (its rows in
+  // order, each row's entries in order), else of the first history (a, b)
+  // that came with a migrating particle. The old list is searched in place,
+  // through its rows sorted by id: no copy of its contacts is made, which
+  // at a build that holds the old list and the new one would be 48 bytes
+  // per touching contact more (issue 26: memory per grain).
   const std::size_t H = static_cast<std::size_t>(history_size_);
-  // Every non-zero history of the previous build (and those that came with
-  // migrating particles), keyed by the pair's global ids.
-  struct Key {
-    std::int64_t a, b;
-    const double* h;
-  };
-  std::vector<Key> keys;
-  if (!build_id_.empty() && !old_row_start.empty())
-    for (std::size_t r = 0; r + 1 < old_row_start.size(); ++r)
-      for (auto k = old_row_start[r]; k < old_row_start[r + 1]; ++k) {
-        const double* h = old_history.data() + k * H;
-        bool any = false;
-        for (std::size_t c = 0; c < H; ++c) any = any || h[c] != 0.0;
-        if (any) keys.push_back({build_id_[r], build_id_[old_partner[k]], h});
-      }
-  for (std::size_t m = 0; 2 * m < imported_ids_.size(); ++m)
-    keys.push_back({imported_ids_[2 * m], imported_ids_[2 * m + 1], imported_history_.data() + m * H});
-  if (!keys.empty()) {
-    // Counting sort by the first id (ids are dense), keeping insertion order
-    // within one id: the old list first, then imported copies (first wins).
-    std::int64_t max_a = 0;
-    for (const auto& k : keys) max_a = std::max(max_a, k.a);
-    for (std::size_t i = 0; i < p.size(); ++i) max_a = std::max(max_a, p.id[i]);
-    std::vector<std::uint32_t> start(static_cast<std::size_t>(max_a) + 2, 0);
-    for (const auto& k : keys) ++start[static_cast<std::size_t>(k.a) + 1];
-    std::partial_sum(start.begin(), start.end(), start.begin());
-    std::vector<Key> by_a(keys.size());
-    {
+  const bool have_old = !build_id_.empty() && !old_row_start.empty();
+  const std::size_t imports = imported_ids_.size() / 2;
+  if (have_old || imports > 0) {
+    // The old rows by id (ids are dense): rows_of[start[a] .. start[a+1]).
+    std::vector<std::uint32_t> start, rows_of;
+    // (Rows appended after the build, for inserted grains, are empty and
+    // have no id at the build: left out.)
+    const std::size_t old_rows = have_old ? std::min(old_row_start.size() - 1, build_id_.size()) : 0;
+    if (have_old) {
+      std::int64_t max_a = 0;
+      for (std::size_t r = 0; r < old_rows; ++r) max_a = std::max(max_a, build_id_[r]);
+      start.assign(static_cast<std::size_t>(max_a) + 2, 0);
+      for (std::size_t r = 0; r < old_rows; ++r) ++start[static_cast<std::size_t>(build_id_[r]) + 1];
+      std::partial_sum(start.begin(), start.end(), start.begin());
+      rows_of.resize(old_rows);
       std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-      for (const auto& k : keys) by_a[fill[static_cast<std::size_t>(k.a)]++] = k;
+      for (std::size_t r = 0; r < old_rows; ++r)
+        rows_of[fill[static_cast<std::size_t>(build_id_[r])]++] = static_cast<std::uint32_t>(r);
     }
+    // The imported histories by (a, b), in the order they came within one pair.
+    std::vector<std::uint32_t> imp(imports);
+    std::iota(imp.begin(), imp.end(), std::uint32_t{0});
+    const auto pair_of = [&](std::uint32_t m) {
+      return std::make_pair(imported_ids_[2 * std::size_t{m}], imported_ids_[2 * std::size_t{m} + 1]);
+    };
+    std::stable_sort(imp.begin(), imp.end(), [&](std::uint32_t x, std::uint32_t y) { return pair_of(x) < pair_of(y); });
+    const auto nonzero = [H](const double* h) {
+      bool any = false;
+      for (std::size_t c = 0; c < H; ++c) any = any || h[c] != 0.0;
+      return any;
+    };
     const std::size_t rows = row_start.size() - 1;
     for (std::size_t i = 0; i < rows; ++i) {
-      const auto a = static_cast<std::size_t>(p.id[i]);
-      const auto k0 = start[a], k1 = start[a + 1];
-      if (k0 == k1) continue;
+      const std::int64_t a = p.id[i];
+      const auto ua = static_cast<std::size_t>(a);
+      const bool old_a = have_old && ua + 1 < start.size() && start[ua] < start[ua + 1];
+      if (!old_a && imports == 0) continue;
       for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
-        const auto b = p.id[partner[k]];
-        for (auto q = k0; q < k1; ++q)
-          if (by_a[q].b == b) {
-            std::copy_n(by_a[q].h, H, history.begin() + static_cast<std::ptrdiff_t>(k * H));
-            break;
+        const std::int64_t b = p.id[partner[k]];
+        const double* src = nullptr;
+        if (old_a)
+          for (auto q = start[ua]; q < start[ua + 1] && !src; ++q) {
+            const auto r = rows_of[q];
+            for (auto e = old_row_start[r]; e < old_row_start[r + 1]; ++e)
+              if (build_id_[old_partner[e]] == b && nonzero(old_history.data() + e * H)) {
+                src = old_history.data() + e * H;
+                break;
+              }
           }
+        if (!src && imports > 0) {
+          const auto it = std::lower_bound(imp.begin(), imp.end(), std::make_pair(a, b),
+                                           [&](std::uint32_t m, const std::pair<std::int64_t, std::int64_t>& key) {
+                                             return pair_of(m) < key;
+                                           });
+          if (it != imp.end() && pair_of(*it) == std::make_pair(a, b)) src = imported_history_.data() + *it * H;
+        }
+        if (src) std::copy_n(src, H, history.begin() + static_cast<std::ptrdiff_t>(k * H));
       }
     }
   }
