@@ -1,7 +1,6 @@
 #include "contact/clump/distance_grid.hpp"
 
 #include <dlfcn.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -13,6 +12,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "contact/clump/vdb/vdb_module.hpp"
 

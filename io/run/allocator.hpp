@@ -17,10 +17,12 @@ namespace grains::io {
 /// does nothing outside glibc.
 void set_allocator_policy();
 
-/// Returns the heap's free pages to the kernel. Set-up frees about 2
-/// million small blocks (the overlap check's cell lists, a positions file's
-/// parse) that glibc would otherwise keep resident for the whole run: 67
-/// bytes per grain in a bed of 10^6 grains. Called once set-up is done.
+/// Returns the heap's free pages to the kernel (what set-up and a build
+/// freed below the heap's top). Called after set-up and after the first
+/// neighbour build: in the settled bed of 10^6 grains the resident size for
+/// the rest of the run is then 409 bytes per grain against the first
+/// build's peak of 417 (bench/RESULTS.md). Not after every build: the 10k
+/// pour would fault its build temporaries in again each time.
 void release_free_memory();
 
 }  // namespace grains::io
