@@ -8,7 +8,12 @@
 // Debian's VTK renders through GLX only (no EGL or OSMesa build), so it needs
 // an X server. When DISPLAY is unset or cannot be opened, render_frame starts
 // a private Xvfb (Debian package xvfb) for the duration of the call and stops
-// it afterwards; otherwise it uses DISPLAY (headless_display.hpp).
+// it afterwards; otherwise it uses DISPLAY (render/headless_display.hpp).
+//
+// The work is done in the rendering module, libgrains_render.so
+// (render/render_module.hpp), loaded on the first call: from
+// $GRAINS_RENDER_MODULE if set, else where the build put it, else beside the
+// program. A module that cannot be loaded is an error naming the paths tried.
 #include <filesystem>
 #include <string>
 

@@ -1,7 +1,5 @@
 #include "contact/clump/distance_grid.hpp"
 
-#include <dlfcn.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,46 +13,33 @@
 #include <vector>
 
 #include "contact/clump/vdb/vdb_module.hpp"
+#include "contact/module_loader.hpp"
 
 namespace grains::clump {
 
 namespace {
 
-// OpenVDB is loaded the first time a grid is computed (vdb_module.hpp):
-// from $GRAINS_VDB_MODULE if set (and only there), else where the build put
-// it, else beside the running program, else by the loader's search path.
+// OpenVDB is loaded the first time a grid is computed (vdb_module.hpp,
+// contact/module_loader.hpp): from $GRAINS_VDB_MODULE if set (and only
+// there), else where the build put it, else beside the running program, else
+// by the loader's search path.
 GrainsVdbSignedDistance vdb_signed_distance() {
   static GrainsVdbSignedDistance fn = nullptr;
   static std::string failure;
   static std::once_flag once;
   std::call_once(once, [] {
-    std::vector<std::string> tried;
-    if (const char* env = std::getenv("GRAINS_VDB_MODULE"); env && *env) {
-      tried.emplace_back(env);  // the user's choice, and only it
-    } else {
 #ifdef GRAINS_VDB_MODULE_PATH
-      tried.emplace_back(GRAINS_VDB_MODULE_PATH);
+    const char* build_path = GRAINS_VDB_MODULE_PATH;
+#else
+    const char* build_path = nullptr;
 #endif
-      std::error_code ec;
-      const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-      if (!ec) tried.push_back((exe.parent_path() / "libgrains_vdb.so").string());
-      tried.emplace_back("libgrains_vdb.so");
+    try {
+      fn = reinterpret_cast<GrainsVdbSignedDistance>(module_symbol(
+          {"GRAINS_VDB_MODULE", build_path, "libgrains_vdb.so", kGrainsVdbSymbol, "the sphere decomposition of a mesh",
+           "OpenVDB"}));
+    } catch (const std::runtime_error& e) {
+      failure = e.what();
     }
-    std::string why;
-    for (const auto& path : tried) {
-      void* h = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-      if (!h) {
-        const char* e = dlerror();
-        why += "\n  " + path + ": " + (e ? e : "cannot be loaded");
-        continue;
-      }
-      fn = reinterpret_cast<GrainsVdbSignedDistance>(dlsym(h, kGrainsVdbSymbol));
-      if (fn) return;  // kept loaded to the end of the process
-      why += "\n  " + path + ": has no " + kGrainsVdbSymbol;
-      dlclose(h);
-    }
-    failure = "the sphere decomposition of a mesh needs grains's OpenVDB module (libgrains_vdb.so, built beside "
-              "the grains program), which could not be loaded; set GRAINS_VDB_MODULE to its path. Tried:" + why;
   });
   if (!fn) throw std::runtime_error(failure);
   return fn;

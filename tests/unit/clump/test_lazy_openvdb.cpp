@@ -8,6 +8,7 @@
 #include "contact/clump/distance_grid.hpp"
 #include "io/case/case.hpp"
 #include "io/run/simulation.hpp"
+#include "tests/support/mapped.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,14 +20,7 @@
 
 namespace {
 
-std::string maps() {
-  std::ifstream f("/proc/self/maps");
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-bool mapped(const std::string& lib) { return maps().find(lib) != std::string::npos; }
+using grains::test::mapped;
 
 const char* kSpheres = R"(
 title: lazy_openvdb

@@ -1,4 +1,4 @@
-#include "postprocess/headless_display.hpp"
+#include "postprocess/render/headless_display.hpp"
 
 #include <cerrno>
 #include <csignal>

@@ -34,7 +34,7 @@
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include "postprocess/frame.hpp"
-#include "postprocess/headless_display.hpp"
+#include "postprocess/render/headless_display.hpp"
 
 VTK_MODULE_INIT(vtkRenderingOpenGL2);
 VTK_MODULE_INIT(vtkRenderingFreeType);
