@@ -1,5 +1,7 @@
 #include "io/run/allocator.hpp"
 
+#include "sim/state/free_heap.hpp"
+
 #include <cstdlib>  // defines __GLIBC__ on glibc
 
 #if defined(__GLIBC__)
@@ -18,10 +20,6 @@ void set_allocator_policy() {
 #endif
 }
 
-void release_free_memory() {
-#if defined(__GLIBC__)
-  malloc_trim(0);
-#endif
-}
+void release_free_memory() { sim::release_free_heap(); }
 
 }  // namespace grains::io

@@ -1,5 +1,7 @@
 #include "sim/neighbor/neighbor_list.hpp"
 
+#include "sim/state/free_heap.hpp"
+
 #include "sim/neighbor/size_classes.hpp"
 
 #include <algorithm>
@@ -11,6 +13,10 @@
 namespace grains::sim {
 
 namespace {
+
+// From this many grains (images included) a build gives its freed
+// temporaries back to the kernel before it allocates the contact history.
+constexpr std::size_t kReleaseHeapFrom = std::size_t{1} << 17;
 
 // The linked-cell grid over the particles' bounding box (within the given
 // bounds), so a sparse scene in a large domain does not pay for empty
@@ -343,21 +349,25 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
     pi.resize(kept);
     pj.resize(kept);
   }
-  // Counting sort of the pairs into rows.
+  // Counting sort of the pairs into rows, in place: row_start[i + 1] first
+  // holds where row i starts and is moved along it as its pairs are placed,
+  // ending where row i ends (= where row i + 1 starts).
   row_start.assign(n + 1, 0);
-  for (auto i : pi) ++row_start[i + 1];
+  for (auto i : pi)
+    if (i + 2 <= n) ++row_start[i + 2];
   std::partial_sum(row_start.begin(), row_start.end(), row_start.begin());
   partner.resize(pi.size());
-  {
-    std::vector<std::uint32_t> fill(row_start.begin(), row_start.end() - 1);
-    for (std::size_t k = 0; k < pi.size(); ++k) partner[fill[pi[k]]++] = pj[k];
-  }
+  for (std::size_t k = 0; k < pi.size(); ++k) partner[row_start[pi[k] + 1]++] = pj[k];
   // Keep each row ordered by partner index: better locality, deterministic order.
   for (std::size_t i = 0; i < n; ++i) std::sort(partner.begin() + row_start[i], partner.begin() + row_start[i + 1]);
   std::vector<std::uint32_t>().swap(pi);
   std::vector<std::uint32_t>().swap(pj);
   std::vector<std::size_t>().swap(grid.order);
   std::vector<std::uint32_t>().swap(grid.cell_start);
+  // In large scenes, what those left in the heap goes back before the
+  // history is allocated (free_heap.hpp: the build's peak). Small scenes
+  // rebuild often and would fault it in again each time.
+  if (n >= kReleaseHeapFrom) release_free_heap();
 
   may_touch.assign(partner.size(), 1);
   history.assign(partner.size() * static_cast<std::size_t>(history_size_), 0.0);
