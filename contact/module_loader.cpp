@@ -4,12 +4,16 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 #include <vector>
 
 namespace grains {
 
-void* module_symbol(const ModuleSpec& spec) {
+namespace {
+
+void* load_symbol(const ModuleSpec& spec) {
   std::vector<std::string> tried;
   if (const char* env = std::getenv(spec.env_var); env && *env) {
     tried.emplace_back(env);  // the user's choice, and only it
@@ -35,6 +39,31 @@ void* module_symbol(const ModuleSpec& spec) {
   throw std::runtime_error(std::string(spec.needed_for) + " needs grains's " + spec.what + " module (" +
                            spec.file_name + ", built beside the grains program), which could not be loaded; set " +
                            spec.env_var + " to its path. Tried:" + why);
+}
+
+}  // namespace
+
+void* module_symbol(const ModuleSpec& spec) {
+  struct Entry {
+    void* fn = nullptr;
+    std::string failure;
+  };
+  static std::mutex m;
+  static std::map<std::string, Entry> entries;
+  const std::lock_guard<std::mutex> lock(m);
+  const std::string key = std::string(spec.file_name) + ':' + spec.symbol;
+  auto it = entries.find(key);
+  if (it == entries.end()) {
+    Entry e;
+    try {
+      e.fn = load_symbol(spec);
+    } catch (const std::runtime_error& x) {
+      e.failure = x.what();
+    }
+    it = entries.emplace(key, std::move(e)).first;
+  }
+  if (!it->second.fn) throw std::runtime_error(it->second.failure);
+  return it->second.fn;
 }
 
 }  // namespace grains

@@ -21,9 +21,10 @@ struct ModuleSpec {
 /// The entry point of a module, loaded from $env_var if set (and only
 /// there), else from build_path, else beside the running program, else by
 /// the loader's search path; the module stays loaded to the end of the
-/// process. Throws std::runtime_error saying what is missing, how to point
-/// at it and every path tried with the loader's reason. Not cached: callers
-/// keep the pointer (one dlopen per process).
+/// process. Looked up once per process and entry point (thread-safe): the
+/// pointer, or the failure, is kept. Throws std::runtime_error saying what
+/// is missing, how to point at it and every path tried with the loader's
+/// reason.
 void* module_symbol(const ModuleSpec& spec);
 
 }  // namespace grains

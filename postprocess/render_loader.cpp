@@ -1,6 +1,5 @@
 // render.hpp's functions, run by the rendering module (render/render_module.hpp),
 // loaded the first time a picture is asked for.
-#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -12,6 +11,7 @@ namespace grains::postprocess {
 
 namespace {
 
+// Looked up once per process (module_loader.hpp).
 template <class Fn>
 Fn render_entry(const char* symbol) {
 #ifdef GRAINS_RENDER_MODULE_PATH
@@ -23,29 +23,11 @@ Fn render_entry(const char* symbol) {
                                              "rendering a picture", "rendering (VTK, OpenGL)"}));
 }
 
-// Each entry is looked up once per process; a module that cannot be loaded
-// is reported each time it is asked for.
-template <class Fn>
-Fn cached(const char* symbol) {
-  static Fn fn = nullptr;
-  static std::string failure;
-  static std::once_flag once;
-  std::call_once(once, [&] {
-    try {
-      fn = render_entry<Fn>(symbol);
-    } catch (const std::runtime_error& e) {
-      failure = e.what();
-    }
-  });
-  if (!fn) throw std::runtime_error(failure);
-  return fn;
-}
-
 }  // namespace
 
 void render_frame(const std::filesystem::path& out_dir, long index, const RenderOptions& o,
                   const std::filesystem::path& png) {
-  const auto fn = cached<GrainsRenderFrame>(kGrainsRenderFrameSymbol);
+  const auto fn = render_entry<GrainsRenderFrame>(kGrainsRenderFrameSymbol);
   char error[4096];
   if (fn(out_dir.c_str(), index, o.color.c_str(), o.width, o.height, o.walls ? 1 : 0, o.wall_opacity, o.view.c_str(),
          png.c_str(), error, sizeof error) != 0)
@@ -53,7 +35,7 @@ void render_frame(const std::filesystem::path& out_dir, long index, const Render
 }
 
 ImageStats png_statistics(const std::filesystem::path& png) {
-  const auto fn = cached<GrainsPngStatistics>(kGrainsPngStatisticsSymbol);
+  const auto fn = render_entry<GrainsPngStatistics>(kGrainsPngStatisticsSymbol);
   char error[4096];
   ImageStats s;
   unsigned long distinct = 0;

@@ -3,11 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,25 +21,14 @@ namespace {
 // there), else where the build put it, else beside the running program, else
 // by the loader's search path.
 GrainsVdbSignedDistance vdb_signed_distance() {
-  static GrainsVdbSignedDistance fn = nullptr;
-  static std::string failure;
-  static std::once_flag once;
-  std::call_once(once, [] {
 #ifdef GRAINS_VDB_MODULE_PATH
-    const char* build_path = GRAINS_VDB_MODULE_PATH;
+  const char* build_path = GRAINS_VDB_MODULE_PATH;
 #else
-    const char* build_path = nullptr;
+  const char* build_path = nullptr;
 #endif
-    try {
-      fn = reinterpret_cast<GrainsVdbSignedDistance>(module_symbol(
-          {"GRAINS_VDB_MODULE", build_path, "libgrains_vdb.so", kGrainsVdbSymbol, "the sphere decomposition of a mesh",
-           "OpenVDB"}));
-    } catch (const std::runtime_error& e) {
-      failure = e.what();
-    }
-  });
-  if (!fn) throw std::runtime_error(failure);
-  return fn;
+  return reinterpret_cast<GrainsVdbSignedDistance>(module_symbol(
+      {"GRAINS_VDB_MODULE", build_path, "libgrains_vdb.so", kGrainsVdbSymbol, "the sphere decomposition of a mesh",
+       "OpenVDB"}));
 }
 
 }  // namespace

@@ -1,7 +1,5 @@
 #include "io/run/allocator.hpp"
 
-#include "sim/state/free_heap.hpp"
-
 #include <cstdlib>  // defines __GLIBC__ on glibc
 
 #if defined(__GLIBC__)
@@ -19,7 +17,5 @@ void set_allocator_policy() {
   mallopt(M_TRIM_THRESHOLD, 8 << 20);
 #endif
 }
-
-void release_free_memory() { sim::release_free_heap(); }
 
 }  // namespace grains::io

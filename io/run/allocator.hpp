@@ -15,17 +15,8 @@ namespace grains::io {
 /// heap keeps up to 8 MiB free at its top for the same reason.
 /// Called once, first thing, by the command line and the Python module;
 /// does nothing outside glibc.
+/// (The heap's free pages go back to the kernel after set-up and after the
+/// first neighbour build: sim/state/free_heap.hpp.)
 void set_allocator_policy();
-
-/// Returns the heap's free pages to the kernel (what set-up and a build
-/// freed below the heap's top; sim/state/free_heap.hpp). Called after set-up
-/// and after the first neighbour build; a build of 2^17 grains or more also
-/// gives back its own temporaries before it allocates the contact history
-/// (sim/neighbor/neighbor_list.cpp), which keeps the first build's peak at
-/// the run's resident size: 398 bytes per grain in the settled bed of 10^6
-/// grains, against 407 before (bench/RESULTS.md). Not at every build of
-/// small scenes: the 10k pour would fault its build temporaries in again
-/// each time.
-void release_free_memory();
 
 }  // namespace grains::io

@@ -26,7 +26,7 @@
 #include "io/run/checkpoint_stage.hpp"
 #include "sim/integrate/arkode.hpp"
 #include "grains/version.hpp"
-#include "io/run/allocator.hpp"
+#include "sim/state/free_heap.hpp"
 
 namespace grains::io {
 
@@ -49,7 +49,7 @@ Simulation make_simulation(Case c) {
   }
   s.rayleigh_time = sim::rayleigh_time(s.c.scene);
   s.pipeline = sim::assemble_pipeline(s.scene, s.c.scene);
-  release_free_memory();
+  sim::release_free_heap();  // what set-up freed (sim/state/free_heap.hpp)
   s.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return s;
 }
@@ -316,7 +316,7 @@ Runner::Runner(Simulation& s, const RunOptions& opt) : s_(s), opt_(opt) {
     s.pipeline.initialize(s.scene);
     s.pipeline.start(s.scene);
   }
-  release_free_memory();  // what the first neighbour build freed (io/run/allocator.hpp)
+  sim::release_free_heap();  // what the first neighbour build freed (sim/state/free_heap.hpp)
   r_.particles_start = s.scene.particles.n_owned();
 }
 

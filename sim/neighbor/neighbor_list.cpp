@@ -1,8 +1,7 @@
 #include "sim/neighbor/neighbor_list.hpp"
 
-#include "sim/state/free_heap.hpp"
-
 #include "sim/neighbor/size_classes.hpp"
+#include "sim/state/free_heap.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,11 +1,15 @@
 #pragma once
 // Gives the heap's free pages back to the kernel (glibc's malloc_trim).
 // Blocks below the mmap threshold (4 MiB: io/run/allocator.hpp) come from the
-// heap, and what they leave when freed stays resident until then: a neighbour
-// build of 10^6 grains frees about 8 MB of such temporaries (its cell starts
-// and counting-sort offsets) just before it allocates the contact history,
-// which made the build's peak 8 bytes per grain above the run's resident size.
-// Does nothing outside glibc.
+// heap, and what they leave when freed stays resident until then. Called
+// after set-up (2 million small blocks of a 10^6 bed's overlap check and
+// positions file: 67 bytes per grain otherwise) and after the first neighbour
+// build (io/run/simulation.cpp); and by a build of 2^17 grains or more before
+// it allocates the contact history (sim/neighbor/neighbor_list.cpp), since
+// its temporaries (about 8 MB at 10^6) made the build's peak 8 bytes per
+// grain above the run's resident size: 407 -> 398 bytes per grain
+// (bench/RESULTS.md). Not at every build of small scenes: the 10k pour would
+// fault its build temporaries in again each time. Does nothing outside glibc.
 #include <cstdlib>  // defines __GLIBC__ on glibc
 
 #if defined(__GLIBC__)
