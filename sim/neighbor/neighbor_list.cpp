@@ -516,27 +516,26 @@ void NeighborList::build_gather(const ParticleStore& p) {
     }
   std::partial_sum(gather_start.begin(), gather_start.end(), gather_start.begin());
   gather_entry.resize(gather_start.back());
+  // Each particle's entries, and beside each the other particle's local
+  // index (the row is known here; finding it later from the entry took a
+  // bisection of row_start per entry), then ordered by its global id.
+  std::vector<std::uint32_t> other(gather_entry.size());
   std::vector<std::uint32_t> fill(gather_start.begin(), gather_start.end() - 1);
   for (std::size_t i = 0; i < rows; ++i)
     for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
-      if (i < n) gather_entry[fill[i]++] = 2 * k;
-      if (partner[k] < n) gather_entry[fill[partner[k]]++] = 2 * k + 1;
+      if (i < n) {
+        other[fill[i]] = partner[k];
+        gather_entry[fill[i]++] = 2 * k;
+      }
+      if (partner[k] < n) {
+        other[fill[partner[k]]] = static_cast<std::uint32_t>(i);
+        gather_entry[fill[partner[k]]++] = 2 * k + 1;
+      }
     }
-  // Order each particle's entries by the other particle's global id.
-  auto other = [&](std::uint32_t e) {
-    const std::uint32_t k = e >> 1;
-    if (e & 1u) {
-      // i is the partner: the other is the row; find it by bisection of row_start.
-      const auto r = static_cast<std::size_t>(std::upper_bound(row_start.begin(), row_start.end(), k) -
-                                              row_start.begin()) - 1;
-      return p.id[r];
-    }
-    return p.id[partner[k]];
-  };
   std::vector<std::pair<std::int64_t, std::uint32_t>> tmp;
   for (std::size_t i = 0; i < n; ++i) {
     tmp.clear();
-    for (auto g = gather_start[i]; g < gather_start[i + 1]; ++g) tmp.emplace_back(other(gather_entry[g]), gather_entry[g]);
+    for (auto g = gather_start[i]; g < gather_start[i + 1]; ++g) tmp.emplace_back(p.id[other[g]], gather_entry[g]);
     std::sort(tmp.begin(), tmp.end());
     for (std::size_t m = 0; m < tmp.size(); ++m) gather_entry[gather_start[i] + m] = tmp[m].second;
   }

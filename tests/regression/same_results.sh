@@ -11,6 +11,11 @@
 # cells; compared with tests/parallel/compare_frames --wall-cells when the
 # files differ: since 2026-11-26 they also carry each wall's record for
 # `grains analyze`, COMPARE = that tool, default build/tests/parallel/compare_frames).
+# EXTRA adds overrides to every run ("--set parallel.deterministic=true":
+# the ordered force sums), LAUNCH a launcher before both binaries
+# ("mpirun --oversubscribe -np 2": the runs on ranks; add
+# SKIP="pour_spheres_arkode", which a run on ranks refuses) and SKIP lists
+# runs to leave out.
 # OLD must read every case run here: adhesive_pour needs contact.model jkr
 # (c04596a on), and frictional results changed on purpose at 9f362b0 (the
 # tangential spring), so compare against 9f362b0 or later.
@@ -54,6 +59,8 @@ runs=(
 fail=0
 for r in "${runs[@]}"; do
   IFS='|' read -r name case sets <<<"$r"
+  case " ${SKIP:-} " in *" $name "*) echo "$name: skipped"; continue ;; esac
+  [ -n "${EXTRA:-}" ] && sets="$sets $EXTRA"
   for which in old new; do
     bin=$old
     [ $which = new ] && bin=$new
@@ -66,7 +73,8 @@ for r in "${runs[@]}"; do
       [ "$rest" = "${rest#* --set }" ] && break
       rest=${rest#* --set }
     done
-    "$bin" run "$case" -o "$out/$name.$which" -q "${args[@]}" >"$out/$name.$which.log" 2>&1 ||
+    # shellcheck disable=SC2086  # LAUNCH is a command line
+    ${LAUNCH:-} "$bin" run "$case" -o "$out/$name.$which" -q "${args[@]}" >"$out/$name.$which.log" 2>&1 ||
       { echo "$name: the $which build failed (log: $out/$name.$which.log)"; fail=1; continue 2; }
   done
   n=0
