@@ -195,7 +195,8 @@ class CaseParser {
     auto& par = c_.scene.parallel;
     par.where = v_.where(n);
     if (n["deterministic"]) par.deterministic = v_.boolean(n, d, "deterministic", "parallel", false);
-    par.balance_threshold = v_.number(n, d, "balance_threshold", "parallel", 1.2);
+    // (The default is the documented one, as without a parallel block: this said 1.2 until 2026-11-28.)
+    par.balance_threshold = v_.number(n, d, "balance_threshold", "parallel", par.balance_threshold);
     if (n["decomposition"]) {
       const auto v = v_.vec3(n, d, "decomposition", "parallel", sim::Vec3::Zero());
       for (int k = 0; k < 3; ++k) {

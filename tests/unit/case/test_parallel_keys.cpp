@@ -1,0 +1,41 @@
+// The parallel block's keys: a case that names one of them keeps the
+// documented defaults of the others (the rebalance threshold used to become
+// 1.2 instead of 1.1 as soon as a case had a parallel block).
+#include <gtest/gtest.h>
+
+#include <optional>
+#include <string>
+
+#include "io/case/case.hpp"
+#include "sim/scene/scene_config.hpp"
+
+namespace grains::io {
+namespace {
+
+std::string with_parallel(const std::string& block) {
+  return R"(domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}
+materials:
+  - {name: glass, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3}
+particles:
+  - {material: glass, radius: 0.0005, count: 10, placement: {type: random_fill, region: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}}}
+time: {dt: 1.0e-6, end: 1.0e-5}
+)" + block;
+}
+
+TEST(ParallelKeys, BalanceThresholdDefaultsAlike) {
+  const double documented = sim::SceneConfig{}.parallel.balance_threshold;
+  EXPECT_DOUBLE_EQ(documented, 1.1);
+  EXPECT_DOUBLE_EQ(parse_case(with_parallel(""), "case.yaml").scene.parallel.balance_threshold, documented);
+  EXPECT_DOUBLE_EQ(parse_case(with_parallel("parallel: {deterministic: false}\n"), "case.yaml")
+                       .scene.parallel.balance_threshold,
+                   documented);
+  EXPECT_DOUBLE_EQ(parse_case(with_parallel("parallel: {decomposition: [1, 1, 2]}\n"), "case.yaml")
+                       .scene.parallel.balance_threshold,
+                   documented);
+  const auto c = parse_case(with_parallel("parallel: {balance_threshold: 1.5, deterministic: true}\n"), "case.yaml");
+  EXPECT_DOUBLE_EQ(c.scene.parallel.balance_threshold, 1.5);
+  EXPECT_EQ(c.scene.parallel.deterministic, std::optional<bool>(true));
+}
+
+}  // namespace
+}  // namespace grains::io
