@@ -195,8 +195,7 @@ class CaseParser {
     auto& par = c_.scene.parallel;
     par.where = v_.where(n);
     if (n["deterministic"]) par.deterministic = v_.boolean(n, d, "deterministic", "parallel", false);
-    // (The default is the documented one, as without a parallel block: this said 1.2 until 2026-11-28.)
-    par.balance_threshold = v_.number(n, d, "balance_threshold", "parallel", par.balance_threshold);
+    par.balance_threshold = v_.number_or_default(n, d, "balance_threshold", "parallel");
     if (n["decomposition"]) {
       const auto v = v_.vec3(n, d, "decomposition", "parallel", sim::Vec3::Zero());
       for (int k = 0; k < 3; ++k) {

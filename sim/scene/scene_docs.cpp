@@ -193,7 +193,7 @@ std::vector<EffectDoc> scene_docs() {
                     "agreement to rounding)").def("true with more than one MPI rank, false in a serial run"),
                 key("decomposition", K::Vec3, "rank grid [nx, ny, nz] (product = number of ranks)").def("chosen"),
                 key("balance_threshold", K::Number, "rebalance when max/mean estimated work per rank (particles + their neighbour-list entries) exceeds this")
-                    .def("1.1").in(1, 100)}});
+                    .def(1.1).in(1, 100)}});
   return d;
 }
 

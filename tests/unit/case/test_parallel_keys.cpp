@@ -7,6 +7,7 @@
 #include <string>
 
 #include "io/case/case.hpp"
+#include "sim/keys/effect_doc.hpp"
 #include "sim/scene/scene_config.hpp"
 
 namespace grains::io {
@@ -22,9 +23,19 @@ time: {dt: 1.0e-6, end: 1.0e-5}
 )" + block;
 }
 
+// The default `grains docs` prints and the parser reads (KeySpec::def).
+double documented_balance_threshold() {
+  for (const auto& d : sim::effect_docs())
+    if (d.name == "parallel")
+      if (const auto* k = d.find("balance_threshold")) return k->default_number;
+  ADD_FAILURE() << "parallel.balance_threshold is not documented";
+  return 0;
+}
+
 TEST(ParallelKeys, BalanceThresholdDefaultsAlike) {
-  const double documented = sim::SceneConfig{}.parallel.balance_threshold;
+  const double documented = documented_balance_threshold();
   EXPECT_DOUBLE_EQ(documented, 1.1);
+  EXPECT_DOUBLE_EQ(sim::SceneConfig{}.parallel.balance_threshold, documented);  // a case without the block
   EXPECT_DOUBLE_EQ(parse_case(with_parallel(""), "case.yaml").scene.parallel.balance_threshold, documented);
   EXPECT_DOUBLE_EQ(parse_case(with_parallel("parallel: {deterministic: false}\n"), "case.yaml")
                        .scene.parallel.balance_threshold,
