@@ -15,7 +15,8 @@
 # mesh wall against a plane wall is the ratio of the wall stages: the three
 # runs pour the same particles (their contacts agree in number to a few per
 # cent: printed). The 100k-triangle box shows what the mesh's size costs.
-#   bash bench/mesh_walls/run.sh      (BUILD: grains build dir, default build; END, ROUNDS, WORK)
+#   bash bench/mesh_walls/run.sh      (BUILD: grains build dir, default build; END, ROUNDS, WORK,
+#                                      KINDS: e.g. "planes mesh10" for the per-contact ratio alone)
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(cd "$HERE/../.." && pwd)"
@@ -24,6 +25,7 @@ GRAINS="${GRAINS:-$BUILD/grains}"
 WORK="${WORK:-/tmp/grains-bench-mesh-walls}"
 END="${END:-0.34616}"
 ROUNDS="${ROUNDS:-2}"
+KINDS="${KINDS:-planes mesh10 mesh100k far100k}"  # which boxes, in this order each round
 CASE="$ROOT/cases/pour_spheres/case.yaml"
 export OMP_NUM_THREADS=1
 rm -rf "$WORK" && mkdir -p "$WORK"
@@ -98,13 +100,35 @@ except Exception:
     wc = -1
 print("%-9s wall %7.2f s  walls stage %6.3f s  neighbour stage %6.3f s  wall contacts (last frame) %5d  lost %d" %
       (name, s["wall_time_s"], walls, neigh, wc, s["lost_particles"]))
+with open(out + "/../stages.txt", "a") as f:
+    f.write("%s %s %.6f %d\n" % (name, out.rsplit("-", 1)[1], walls, wc))
 PY
 }
 for r in $(seq 1 "$ROUNDS"); do
-  run planes $r
-  run mesh10 $r "--set" "walls=[{type: mesh, name: box, file: $WORK/box10.off, material: grain}]"
-  run mesh100k $r "--set" "walls=[{type: mesh, name: box, file: $WORK/box100k.off, material: grain}]"
-  run far100k $r --set "domain.max=[0.056,0.021,0.071]" \
-    "--set" "walls=[{type: mesh, name: box, file: $WORK/box10_far100k.off, material: grain}]"
+  for kind in $KINDS; do
+    case $kind in
+      planes) run planes $r ;;
+      mesh10) run mesh10 $r "--set" "walls=[{type: mesh, name: box, file: $WORK/box10.off, material: grain}]" ;;
+      mesh100k) run mesh100k $r "--set" "walls=[{type: mesh, name: box, file: $WORK/box100k.off, material: grain}]" ;;
+      far100k) run far100k $r --set "domain.max=[0.056,0.021,0.071]" \
+        "--set" "walls=[{type: mesh, name: box, file: $WORK/box10_far100k.off, material: grain}]" ;;
+      *) echo "bench/mesh_walls: unknown kind '$kind' (planes, mesh10, mesh100k, far100k)" >&2; exit 2 ;;
+    esac
+  done
 done
+# Per contact, a mesh against the planes of the same round (their runs are
+# minutes apart; the machine's speed drifts between rounds), and the median.
+python3 - "$WORK/stages.txt" <<'PY'
+import collections, statistics, sys
+runs = collections.defaultdict(dict)
+for line in open(sys.argv[1]):
+    name, r, walls, wc = line.split()
+    runs[int(r)][name] = (float(walls), int(wc))
+for kind in ("mesh10", "mesh100k", "far100k"):
+    ratios = [(m[kind][0] / m[kind][1]) / (m["planes"][0] / m["planes"][1])
+              for m in runs.values() if kind in m and "planes" in m and m[kind][1] > 0 and m["planes"][1] > 0]
+    if ratios:
+        print("%-9s per wall contact over planes, round by round: %s; median %.2f" %
+              (kind, " ".join("%.2f" % x for x in ratios), statistics.median(ratios)))
+PY
 echo "== load after: $(uptime)"

@@ -156,9 +156,14 @@ std::size_t MeshSurface::bytes() const {
          nodes_.capacity() * sizeof(Node);
 }
 
-void MeshSurface::near(const Vec3& x, double reach, std::vector<std::uint32_t>& out, std::size_t* visited) const {
+void MeshSurface::near(const Vec3& x, double reach, std::vector<std::uint32_t>& out, std::size_t* visited,
+                       double skin) const {
   if (nodes_.empty()) return;
   const double r2 = reach * reach;
+  // Deep: inside each edge's line by more than the skin, and by more than
+  // the dot products' rounding (a few ulps of |x|), so that a centre moved
+  // by up to the skin is still inside as the screen computes it.
+  const double deep = skin >= 0 ? skin + 1e-12 * (x.cwiseAbs().maxCoeff() + reach) : std::numeric_limits<double>::infinity();
   const std::size_t first = out.size();
   int stack[64];
   int top = 0;
@@ -180,7 +185,7 @@ void MeshSurface::near(const Vec3& x, double reach, std::vector<std::uint32_t>& 
         const double out_by = std::max({sc.e[0].w() - sc.e[0].dot(x), sc.e[1].w() - sc.e[1].dot(x),
                                         sc.e[2].w() - sc.e[2].dot(x)});
         if (out_by <= 0) {
-          out.push_back(static_cast<std::uint32_t>(t));
+          out.push_back(static_cast<std::uint32_t>(t) | (-out_by > deep ? kDeep : 0u));
           continue;
         }
         if (out_by * out_by + h * h >= r2) continue;
@@ -193,7 +198,8 @@ void MeshSurface::near(const Vec3& x, double reach, std::vector<std::uint32_t>& 
       stack[top++] = nd.right;
     }
   }
-  std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
+  std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
+            [](std::uint32_t a, std::uint32_t b) { return (a & kTriangle) < (b & kTriangle); });
   if (visited) *visited += seen;
 }
 
@@ -220,7 +226,8 @@ int MeshSurface::resolve_sphere(const Vec3& x, double r, std::span<const std::ui
   auto& [cand, found, done_edges, done_vertices, accepted_edges] = scratch;
   cand.clear();
   const double r2 = r * r;
-  for (const auto t : tris) {
+  for (const auto item : tris) {
+    const std::uint32_t t = item & kTriangle;
     const auto& f = faces_[t];
     const Vec3& a = vertices_[f[0]];
     const double h = screen_[t].n.dot(x - a);

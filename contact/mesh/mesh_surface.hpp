@@ -79,12 +79,19 @@ class MeshSurface {
 
   /// Appends the triangles within `reach` of x (exact distance), in
   /// ascending order; `visited` counts the hierarchy nodes looked at.
-  void near(const Vec3& x, double reach, std::vector<std::uint32_t>& out, std::size_t* visited = nullptr) const;
+  /// With a `skin` (>= 0), a triangle whose face x is over by more than the
+  /// skin from each of its edges' lines is appended as t | kDeep: a wall's
+  /// near list for a sphere that moves less than the skin before the next
+  /// build stays over that face, so sphere_screen need not test its edges.
+  void near(const Vec3& x, double reach, std::vector<std::uint32_t>& out, std::size_t* visited = nullptr,
+            double skin = -1) const;
+  /// A near-list item: a triangle, with kDeep when marked (near()).
+  static constexpr std::uint32_t kDeep = 1u << 31, kTriangle = kDeep - 1;
   /// Distance from x to the nearest triangle (infinity when there is none within `limit`).
   double distance(const Vec3& x, double limit) const;
 
   /// The contacts of sphere (x, r) with the triangles `tris` (a superset of
-  /// those within r), one per physical contact, deepest first; at most `max`
+  /// those within r; items of near(), marked or not), one per physical contact, deepest first; at most `max`
   /// written to out; returns how many there are (may exceed max).
   /// The common case (no other triangle within r, or none at all) is
   /// settled here, inline; the rest in resolve_sphere.
@@ -105,10 +112,17 @@ class MeshSurface {
     const double r2 = r * r;
     int hit = kNone;
     bool inside = false;
-    for (const auto t : tris) {
+    for (const auto item : tris) {
+      const std::uint32_t t = item & kTriangle;
       const Screen& sc = screen_[t];
       const double h = sc.n.dot(x) - sc.off;  // signed distance from its plane
       if (h * h >= r2) continue;             // its plane is beyond the radius
+      if (item & kDeep) {  // x still over the face (near()): what the edges' lines would say
+        if (hit >= 0) return kResolve;
+        hit = static_cast<int>(t);
+        inside = true;
+        continue;
+      }
       // The distances of x from the lines of the three edges, in the plane
       // (positive inside): all positive, x is over the face; the largest
       // outside bounds the distance from the triangle from below.

@@ -87,13 +87,17 @@ std::string MeshWall::description() const {
   return o.str();
 }
 
-void MeshWall::near_list(const ParticleStore& p, std::size_t n, double skin, bool, std::vector<std::uint32_t>& out,
+void MeshWall::near_list(const ParticleStore& p, std::size_t n, double skin, bool shapes, std::vector<std::uint32_t>& out,
                          NearItems& items) const {
   items.start.assign(1, 0);
   items.items.clear();
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t before = items.items.size();
-    surface->near(to_body(p.x[i]), p.radius[i] + skin, items.items);
+    // A sphere's items are marked deep where its centre stays over the face
+    // until the next build (it moves less than the skin relative to the
+    // wall: the list's trigger). Not an ellipsoid's: they go their own way.
+    const bool sphere = !shapes || p.shape[i] != kEllipsoid;
+    surface->near(to_body(p.x[i]), p.radius[i] + skin, items.items, nullptr, sphere ? skin : -1.0);
     if (items.items.size() == before) continue;
     out.push_back(static_cast<std::uint32_t>(i));
     items.start.push_back(static_cast<std::uint32_t>(items.items.size()));

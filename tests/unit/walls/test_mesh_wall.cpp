@@ -672,6 +672,68 @@ TEST(MeshSurfaceSearch, NearFindsExactlyTheTrianglesWithinReach) {
   }
 }
 
+TEST(MeshSurfaceSearch, DeepItemsGiveTheContactsOfUnmarkedOnesWithinTheSkin) {
+  // A wall's near list marks a triangle deep when the sphere's centre is
+  // over its face by more than the skin from each edge's line: until the
+  // next build (each grain moves less than the skin) sphere_screen takes
+  // such a triangle's face without testing its edges. Spheres listed at
+  // random places, then moved by just under the skin in random directions
+  // and straight towards the rims: the contacts from the marked list are
+  // those of the plain one, bit for bit. Meshes with rims and ridges, where
+  // a face taken wrongly would replace an edge or vertex contact (marking
+  // every item over its face fails here), and a fine flat grid.
+  Tri box = grid(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 1, 1);  // open box: rims and concave edges
+  box.add(grid(Vec3(0, 0, 0), Vec3(0, 0, 0.6), Vec3(1, 0, 0), 1, 1));
+  box.add(grid(Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0.6), 1, 1));
+  Tri ridge = grid(Vec3(0, 0, 0), Vec3(0.5, 0, 0.2), Vec3(0, 1, 0), 2, 2);  // a convex ridge at x = 0.5
+  ridge.add(grid(Vec3(0.5, 0, 0.2), Vec3(0.5, 0, -0.2), Vec3(0, 1, 0), 2, 2));
+  const Tri fine = grid(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 8, 8);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-0.2, 1.2), z(-0.25, 0.3), rad(0.02, 0.15), sk(0.005, 0.06), dir(-1, 1);
+  std::size_t marked_total = 0, compared = 0;
+  for (const Tri* m : std::initializer_list<const Tri*>{&box, &ridge, &fine}) {
+    const auto s = surface(*m);
+    for (int q = 0; q < 3000; ++q) {
+      const Vec3 x0(u(rng), u(rng), z(rng));
+      const double r = rad(rng), skin = sk(rng);
+      std::vector<std::uint32_t> marked, plain;
+      s.near(x0, r + skin, marked, nullptr, skin);
+      s.near(x0, r + skin, plain);
+      ASSERT_EQ(marked.size(), plain.size());
+      std::size_t deep = 0;
+      for (std::size_t k = 0; k < marked.size(); ++k) {
+        ASSERT_EQ(marked[k] & MeshSurface::kTriangle, plain[k]);
+        deep += (marked[k] & MeshSurface::kDeep) != 0;
+      }
+      marked_total += deep;
+      if (deep == 0) continue;
+      std::vector<Vec3> moves;
+      for (int k = 0; k < 6; ++k) {
+        Vec3 d(dir(rng), dir(rng), dir(rng));
+        moves.push_back(skin * 0.999999 * d.normalized());
+      }
+      for (const auto& rim : {Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(0, 1, 0)})
+        moves.push_back(skin * 0.999999 * rim);
+      for (const auto& d : moves) {
+        const Vec3 x = x0 + d;
+        MeshContact a[16], b[16];
+        const int na = s.sphere_contacts(x, r, marked, a, 16), nb = s.sphere_contacts(x, r, plain, b, 16);
+        ASSERT_EQ(na, nb) << "built at " << x0.transpose() << ", r " << r << ", skin " << skin << ", at " << x.transpose();
+        for (int k = 0; k < std::min(na, 16); ++k) {
+          EXPECT_EQ(a[k].point, b[k].point);
+          EXPECT_EQ(a[k].normal, b[k].normal);
+          EXPECT_EQ(a[k].depth, b[k].depth);
+          EXPECT_EQ(a[k].triangle, b[k].triangle);
+          EXPECT_EQ(a[k].feature, b[k].feature);
+        }
+        compared += static_cast<std::size_t>(na);
+      }
+    }
+  }
+  EXPECT_GT(marked_total, 1000u);  // the marking is there to be tested
+  EXPECT_GT(compared, 1000u);
+}
+
 }  // namespace
 }  // namespace grains::test
 
