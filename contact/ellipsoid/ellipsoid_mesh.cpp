@@ -82,7 +82,8 @@ int ellipsoid_mesh_contacts(const MeshSurface& mesh, const Ellipsoid& body, std:
     return t;
   };
 
-  for (const auto tt : tris) {
+  for (const auto item : tris) {
+    const std::uint32_t tt = item & MeshSurface::kTriangle;  // (a near list's mark is for spheres)
     const int t = static_cast<int>(tt);
     const auto& f = F[tt];
     const Vec3 &a = V[f[0]], &b = V[f[1]], &c = V[f[2]];

@@ -40,7 +40,8 @@
 namespace grains::contact {
 
 /// The contacts of ellipsoid `body` (in the mesh's frame) with the triangles
-/// `tris` (ascending; a superset of those it touches), deepest first; at most
+/// `tris` (items of MeshSurface::near(), marked or not: ascending; a superset
+/// of those it touches), deepest first; at most
 /// `max` written; returns how many there are.
 int ellipsoid_mesh_contacts(const MeshSurface& mesh, const Ellipsoid& body, std::span<const std::uint32_t> tris,
                             MeshContact* out, int max);
