@@ -217,6 +217,67 @@ double MeshSurface::distance(const Vec3& x, double limit) const {
 
 int MeshSurface::resolve_sphere(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out,
                                 int max) const {
+  const int n = resolve_by_planes(x, r, tris, out, max);
+  return n >= 0 ? n : resolve_rule(x, r, tris, out, max);
+}
+
+int MeshSurface::resolve_by_planes(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out,
+                                   int max) const {
+  // The triangles within r, from their planes as sphere_screen reads them:
+  // those whose face the centre is over, and those it is outside of across
+  // one edge's line only (inside or on the other two): their nearest point
+  // is on that edge, ends included (the region beyond one edge, between the
+  // other two edges' lines, projects onto the closed edge).
+  constexpr int kMax = 8;
+  int over[kMax], beyond[kMax];
+  int n_over = 0, n_beyond = 0;
+  const double r2 = r * r;
+  for (const auto item : tris) {
+    const std::uint32_t t = item & kTriangle;
+    const Screen& sc = screen_[t];
+    const double h = sc.n.dot(x) - sc.off;
+    if (h * h >= r2) continue;
+    if (item & kDeep) {
+      if (n_over == kMax) return -1;
+      over[n_over++] = static_cast<int>(t);
+      continue;
+    }
+    const double s[3] = {sc.e[0].dot(x) - sc.e[0].w(), sc.e[1].dot(x) - sc.e[1].w(), sc.e[2].dot(x) - sc.e[2].w()};
+    const double out_by = std::max({-s[0], -s[1], -s[2]});
+    if (out_by > 0 && out_by * out_by + h * h >= r2) continue;
+    if (out_by < 0) {
+      if (n_over == kMax) return -1;
+      over[n_over++] = static_cast<int>(t);
+      continue;
+    }
+    // Outside (or on) an edge's line: across exactly one edge, which has one
+    // other face, else the full rule.
+    const int k = s[0] < 0 ? 0 : s[1] < 0 ? 1 : 2;
+    if (!(s[k] < 0) || s[(k + 1) % 3] < 0 || s[(k + 2) % 3] < 0) return -1;
+    const auto faces = edge_faces(face_edge_[t][static_cast<std::size_t>(k)]);
+    if (faces.size() != 2 || n_beyond == kMax) return -1;
+    beyond[n_beyond++] = faces[0] == static_cast<int>(t) ? faces[1] : faces[0];
+  }
+  // A triangle nearest on an edge it shares with a triangle whose face the
+  // centre is over gives no contact (the rule: that edge, and its ends, are
+  // not nearest for every face that shares them); the faces give theirs.
+  if (n_over == 0) return -1;
+  for (int b = 0; b < n_beyond; ++b)
+    if (std::find(over, over + n_over, beyond[b]) == over + n_over) return -1;
+  MeshContact found[kMax];
+  int n = 0;
+  for (int k = 0; k < n_over; ++k) {
+    face_contact(x, r, over[k], found[n]);
+    if (found[n].depth > 0) ++n;  // a graze at r (the plane's offset rounds differently) is none
+  }
+  for (int i = 1; i < n; ++i)  // deepest first, stable (as sort_by_depth)
+    for (int j = i; j > 0 && found[j].depth > found[j - 1].depth; --j) std::swap(found[j], found[j - 1]);
+  std::copy_n(found, std::min(n, max), out);
+  return n;
+}
+
+int MeshSurface::resolve_rule(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out,
+                              int max) const {
   struct Scratch {
     std::vector<Candidate> cand;
     std::vector<MeshContact> found;

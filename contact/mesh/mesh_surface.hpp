@@ -137,8 +137,19 @@ class MeshSurface {
     return hit >= 0 && !inside ? kResolve : hit;
   }
   /// The contacts of sphere (x, r) with `tris` by the full rule (faces,
-  /// edges, vertices), as sphere_contacts returns them.
+  /// edges, vertices), as sphere_contacts returns them: resolve_by_planes
+  /// when it settles them, else resolve_rule.
   int resolve_sphere(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out, int max) const;
+  /// The cases the screen sends on that the triangles' planes settle: the
+  /// centre over the faces of one or more triangles within r (a concave
+  /// valley or corner: a contact with each face), and every other triangle
+  /// within r outside one edge's line only, that edge shared with one of
+  /// those faces (a quad's diagonal, a bend: by the rule, no contact of its
+  /// own). The contacts as resolve_rule gives them, or -1 when it cannot tell
+  /// (an edge or a vertex may touch).
+  int resolve_by_planes(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out, int max) const;
+  /// The full rule, from each triangle's nearest point and feature.
+  int resolve_rule(const Vec3& x, double r, std::span<const std::uint32_t> tris, MeshContact* out, int max) const;
   /// The face contact of face_contact as a normal n (towards x unless
   /// one-sided) and the centre's distance s along it: the foot is x - n s.
   GRAINS_INLINE void face_normal(const Vec3& x, int t, Vec3& n, double& s) const {

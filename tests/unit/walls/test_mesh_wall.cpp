@@ -734,6 +734,67 @@ TEST(MeshSurfaceSearch, DeepItemsGiveTheContactsOfUnmarkedOnesWithinTheSkin) {
   EXPECT_GT(compared, 1000u);
 }
 
+TEST(MeshSurfaceSphere, PlanesSettleWhatTheyCanAsTheFullRuleDoes) {
+  // resolve_sphere first tries the triangles' planes (resolve_by_planes):
+  // the centre over one or more faces, every other triangle within reach
+  // across an edge shared with one of them. What it settles must be the full
+  // rule's contacts bit for bit, on meshes where the shortcut would be wrong
+  // if it took too much: rims, convex ridges and corners, concave valleys
+  // and corners, a bumpy surface, obtuse slivers, a pyramid's apex; listed
+  // plain and marked (deep items).
+  Tri box = open_box(Vec3(0, 0, 0), Vec3(1, 1, 0.6));
+  box.weld();
+  Tri bumpy = grid(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 5, 5);
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> bump(-0.06, 0.06);
+  for (auto& v : bumpy.v) v.z() += bump(rng);
+  Tri slivers = grid(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 1, 7);  // cells 7 times wider than deep
+  for (auto& v : slivers.v) v.x() += 0.3 * v.y();                           // sheared: obtuse corners
+  Tri pyramid;
+  pyramid.v = {Vec3(0.5, 0.5, 0.3), Vec3(1, 0.5, 0), Vec3(0.5, 1, 0), Vec3(0, 0.5, 0), Vec3(0.5, 0, 0)};
+  pyramid.f = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}};
+  Tri ridge = folded(-0.4, 3), valley = folded(0.6, 3);
+  for (auto* m : {&ridge, &valley})
+    for (auto& v : m->v) v = Vec3(0.5 * (v.x() + 1), 0.5 * (v.y() + 1), v.z());
+  std::uniform_real_distribution<double> u(-0.15, 1.15), z(-0.2, 0.35), rad(0.03, 0.2), sk(0.0, 0.05);
+  std::size_t settled = 0, ruled = 0, several = 0;
+  for (const Tri* m : std::initializer_list<const Tri*>{&box, &bumpy, &slivers, &pyramid, &ridge, &valley}) {
+    const auto s = surface(*m);
+    for (int q = 0; q < 20000; ++q) {
+      const Vec3 x(u(rng), u(rng), z(rng));
+      const double r = rad(rng), skin = sk(rng);
+      std::vector<std::uint32_t> plain, marked;
+      s.near(x, r, plain);
+      s.near(x, r + skin, marked, nullptr, skin);
+      for (const auto* tris : {&plain, &marked}) {
+        MeshContact a[16], b[16];
+        const int na = s.resolve_by_planes(x, r, *tris, a, 16);
+        if (na < 0) {
+          ++ruled;
+          continue;
+        }
+        const int nb = s.resolve_rule(x, r, *tris, b, 16);
+        ASSERT_EQ(na, nb) << "at " << x.transpose() << ", r " << r;
+        for (int k = 0; k < na; ++k) {
+          EXPECT_EQ(a[k].point, b[k].point);
+          EXPECT_EQ(a[k].normal, b[k].normal);
+          EXPECT_EQ(a[k].depth, b[k].depth);
+          EXPECT_EQ(a[k].triangle, b[k].triangle);
+          EXPECT_EQ(a[k].feature, 0);
+        }
+        settled += na > 0;
+        several += na > 1;
+        MeshContact c[16];  // resolve_sphere takes them
+        ASSERT_EQ(s.resolve_sphere(x, r, *tris, c, 16), na);
+      }
+    }
+  }
+  // Each way taken often: the shortcut (one face, several), and the full rule.
+  EXPECT_GT(settled, 20000u);
+  EXPECT_GT(several, 2000u);
+  EXPECT_GT(ruled, 20000u);
+}
+
 }  // namespace
 }  // namespace grains::test
 
