@@ -156,8 +156,12 @@ class MeshSurface {
     const auto k = static_cast<std::size_t>(t);
     const Vec3& n0 = screen_[k].n;
     const Vec3& a = vertices_[faces_[k][0]];
-    n = one_sided_ || n0.dot(x - a) >= 0 ? n0 : Vec3(-n0);
-    s = n.dot(x - a);
+    // One dot product: with -n0 each product, and so the sum, is exactly
+    // the negated one (rounding is symmetric in sign).
+    const double d = n0.dot(x - a);
+    const bool front = one_sided_ || d >= 0;
+    n = front ? n0 : Vec3(-n0);
+    s = front ? d : -d;
   }
   /// The contact of sphere (x, r) with the face of triangle t: the plane's,
   /// as a plane wall computes it (normal towards the centre unless
