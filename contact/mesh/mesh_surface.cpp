@@ -39,10 +39,15 @@ struct Candidate {
 
 }  // namespace
 
-void sort_by_depth(std::vector<MeshContact>& c) {
-  for (std::size_t i = 1; i < c.size(); ++i)  // insertion sort, stable: a few contacts, no allocation
+namespace {
+// Deepest first, stable: an insertion sort (a few contacts, no allocation).
+void sort_deepest_first(MeshContact* c, std::size_t n) {
+  for (std::size_t i = 1; i < n; ++i)
     for (std::size_t j = i; j > 0 && c[j].depth > c[j - 1].depth; --j) std::swap(c[j], c[j - 1]);
 }
+}  // namespace
+
+void sort_by_depth(std::vector<MeshContact>& c) { sort_deepest_first(c.data(), c.size()); }
 
 MeshSurface::MeshSurface(std::vector<Vec3> vertices, std::vector<std::array<int, 3>> faces, bool one_sided)
     : vertices_(std::move(vertices)), faces_(std::move(faces)), one_sided_(one_sided) {
@@ -270,8 +275,7 @@ int MeshSurface::resolve_by_planes(const Vec3& x, double r, std::span<const std:
     face_contact(x, r, over[k], found[n]);
     if (found[n].depth > 0) ++n;  // a graze at r (the plane's offset rounds differently) is none
   }
-  for (int i = 1; i < n; ++i)  // deepest first, stable (as sort_by_depth)
-    for (int j = i; j > 0 && found[j].depth > found[j - 1].depth; --j) std::swap(found[j], found[j - 1]);
+  sort_deepest_first(found, static_cast<std::size_t>(n));
   std::copy_n(found, std::min(n, max), out);
   return n;
 }
