@@ -26,6 +26,7 @@
 // normal even when the centre has passed behind it (up to a radius), and
 // edges and vertices only touch from in front of one of their faces.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -100,15 +101,23 @@ class MeshSurface {
     const int t = sphere_screen(x, r, tris);
     if (t == kNone) return 0;
     if (t < 0 || max < 1) return resolve_sphere(x, r, tris, out, max);
-    face_contact(x, r, t, out[0]);
-    return out[0].depth > 0 ? 1 : 0;  // the screen's plane offset rounds differently: a graze at r is none
+    Vec3 n;
+    double s;
+    face_normal(x, t, n, s);
+    if (!face_touches(s, r)) return 0;
+    out[0] = {Vec3(x - n * s), n, r - s, r, t, 0};
+    return 1;
   }
   static constexpr int kNone = -1, kResolve = -2;
   /// The screen of sphere_contacts: kNone when no triangle of `tris` is
-  /// within r of x; the triangle when exactly one is and x is over its face
-  /// (its contact is the face's, face_contact); kResolve otherwise (several
-  /// triangles, or an edge or a vertex: resolve_sphere decides).
+  /// within r of x; a triangle when x is over its face and no other is within
+  /// r (its contact is the face's, face_normal, when face_touches says so);
+  /// kResolve otherwise (several triangles, or an edge or a vertex:
+  /// resolve_sphere decides). A list of one deep item (near(): x stays over
+  /// that face until the next build, and no other triangle was within
+  /// reach) is that triangle at once: its plane alone decides.
   GRAINS_INLINE int sphere_screen(const Vec3& x, double r, std::span<const std::uint32_t> tris) const {
+    if (tris.size() == 1 && (tris[0] & kDeep)) return static_cast<int>(tris[0] & kTriangle);
     const double r2 = r * r;
     int hit = kNone;
     bool inside = false;
@@ -163,6 +172,11 @@ class MeshSurface {
     n = front ? n0 : Vec3(-n0);
     s = front ? d : -d;
   }
+  /// Whether a sphere of radius r whose centre is at distance s along a
+  /// face's normal (face_normal) touches its plane: |s| < r (one-sided, s
+  /// may be negative: the centre behind the face, up to r). (The screen's
+  /// plane offset rounds differently: a graze at r may pass it.)
+  static GRAINS_INLINE bool face_touches(double s, double r) { return std::abs(s) < r; }
   /// The contact of sphere (x, r) with the face of triangle t: the plane's,
   /// as a plane wall computes it (normal towards the centre unless
   /// one-sided, the centre's distance, its foot).

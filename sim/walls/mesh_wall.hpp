@@ -241,7 +241,7 @@ struct MeshWall : WallCommon {
       Vec3 nb;
       double s;
       surface->face_normal(x, t, nb, s);
-      if (!(r - s > 0)) return;  // a graze at r (the screen's plane offset rounds differently) is none
+      if (!contact::MeshSurface::face_touches(s, r)) return;
       contact::ContactGeometry g;
       g.normal = moving ? Vec3(R * nb) : nb;
       g.point = moving ? Vec3(R * Vec3(x - nb * s) + T) : Vec3(x - nb * s);

@@ -134,12 +134,15 @@ class WallStage final : public Stage {
     double* const tags0 = Tagged && nn > 0 ? p.wall_tags.data() + wall.tag_offset : nullptr;
     const std::uint32_t* const item = items.items.data();
     const std::uint32_t* const item_start = items.start.size() > near.size() ? items.start.data() : nullptr;
-    // Each particle appears once per wall: rows are independent.
-    parallel_for(threads, nn, [&](std::ptrdiff_t m) {
-      const std::size_t i = near[static_cast<std::size_t>(m)];
+    const std::uint32_t* const row_particle = near.data();
+    // Each particle appears once per wall: rows are independent. (The row's
+    // constants are captured by value: by reference each read would go
+    // through the closure, again after every call the compiler cannot see.)
+    parallel_for(threads, nn, [&, row_particle, hist0, tags0, item, item_start, WH, WT, slots, reach](std::ptrdiff_t m) {
+      const std::size_t i = row_particle[m];
       if constexpr (H > 0) {  // a few rows ahead: the rows' particles are scattered
         if (m + 8 < nn) {
-          const std::size_t ia = near[static_cast<std::size_t>(m + 8)];
+          const std::size_t ia = row_particle[m + 8];
           __builtin_prefetch(hist0 + ia * static_cast<std::size_t>(WH));
           if constexpr (Tagged)  // the mask and the first slot's normal
             __builtin_prefetch(tags0 + ia * static_cast<std::size_t>(WT) + 3);

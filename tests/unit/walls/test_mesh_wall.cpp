@@ -682,7 +682,10 @@ TEST(MeshSurfaceSearch, DeepItemsGiveTheContactsOfUnmarkedOnesWithinTheSkin) {
   // and straight towards the rims: the contacts from the marked list are
   // those of the plain one, bit for bit. Meshes with rims and ridges, where
   // a face taken wrongly would replace an edge or vertex contact (marking
-  // every item over its face fails here), and a fine flat grid.
+  // every item over its face fails here), and a fine flat grid; two-sided
+  // and one-sided. A list of one marked item skips the screen (its plane
+  // alone decides): spheres behind a one-sided face, beyond r of its plane
+  // and just within it are among those compared.
   Tri box = grid(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 1, 1);  // open box: rims and concave edges
   box.add(grid(Vec3(0, 0, 0), Vec3(0, 0, 0.6), Vec3(1, 0, 0), 1, 1));
   box.add(grid(Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0.6), 1, 1));
@@ -691,9 +694,10 @@ TEST(MeshSurfaceSearch, DeepItemsGiveTheContactsOfUnmarkedOnesWithinTheSkin) {
   const Tri fine = grid(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 8, 8);
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-0.2, 1.2), z(-0.25, 0.3), rad(0.02, 0.15), sk(0.005, 0.06), dir(-1, 1);
-  std::size_t marked_total = 0, compared = 0;
-  for (const Tri* m : std::initializer_list<const Tri*>{&box, &ridge, &fine}) {
-    const auto s = surface(*m);
+  std::size_t marked_total = 0, compared = 0, lone = 0;
+  const Tri* const meshes[] = {&box, &ridge, &fine};
+  for (int run = 0; run < 6; ++run) {  // each mesh two-sided, then one-sided
+    const auto s = surface(*meshes[run % 3], run >= 3);
     for (int q = 0; q < 3000; ++q) {
       const Vec3 x0(u(rng), u(rng), z(rng));
       const double r = rad(rng), skin = sk(rng);
@@ -708,6 +712,7 @@ TEST(MeshSurfaceSearch, DeepItemsGiveTheContactsOfUnmarkedOnesWithinTheSkin) {
       }
       marked_total += deep;
       if (deep == 0) continue;
+      lone += marked.size() == 1;
       std::vector<Vec3> moves;
       for (int k = 0; k < 6; ++k) {
         Vec3 d(dir(rng), dir(rng), dir(rng));
@@ -733,6 +738,7 @@ TEST(MeshSurfaceSearch, DeepItemsGiveTheContactsOfUnmarkedOnesWithinTheSkin) {
   }
   EXPECT_GT(marked_total, 1000u);  // the marking is there to be tested
   EXPECT_GT(compared, 1000u);
+  EXPECT_GT(lone, 500u);  // and lists of one marked item
 }
 
 TEST(MeshSurfaceSphere, PlanesSettleWhatTheyCanAsTheFullRuleDoes) {
