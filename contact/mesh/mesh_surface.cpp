@@ -63,6 +63,7 @@ MeshSurface::MeshSurface(std::vector<Vec3> vertices, std::vector<std::array<int,
     Screen& sc = screen_[f];
     sc.n = n.norm() > 0 ? Vec3(n.normalized()) : Vec3(0, 0, 1);
     sc.off = sc.n.dot(vertices_[t[0]]);
+    sc.a = vertices_[t[0]];
     for (int k = 0; k < 3; ++k) {
       const Vec3& a = vertices_[t[k]];
       const Vec3 m = sc.n.cross(vertices_[t[(k + 1) % 3]] - a).normalized();  // counter-clockwise: inwards
@@ -272,8 +273,7 @@ int MeshSurface::resolve_by_planes(const Vec3& x, double r, std::span<const std:
   MeshContact found[kMax];
   int n = 0;
   for (int k = 0; k < n_over; ++k) {
-    face_contact(x, r, over[k], found[n]);
-    if (found[n].depth > 0) ++n;  // a graze at r (the plane's offset rounds differently) is none
+    if (face_contact(x, r, over[k], found[n])) ++n;  // a graze at r (the plane's offset rounds differently) is none
   }
   sort_deepest_first(found, static_cast<std::size_t>(n));
   std::copy_n(found, std::min(n, max), out);
@@ -318,14 +318,14 @@ int MeshSurface::resolve_rule(const Vec3& x, double r, std::span<const std::uint
   };
   auto in_front = [&](int t, const Vec3& q) { return screen_[static_cast<std::size_t>(t)].n.dot(x - q) >= 0; };
 
-  // Faces.
   // Faces: the plane's contact, as a plane wall computes it (normal, the
   // centre's distance, its foot), with the normal towards the centre unless
-  // one-sided.
+  // one-sided; none where face_touches says it does not touch (the
+  // nearest point's distance and the plane's round differently at r).
   for (const auto& c : cand) {
     if (c.f != TriangleFeature::Face) continue;
     found.emplace_back();
-    face_contact(x, r, c.t, found.back());
+    if (!face_contact(x, r, c.t, found.back())) found.pop_back();
   }
   // Edges: one contact per edge, when it is the local minimum for all its faces.
   done_edges.clear();

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 #include <type_traits>
 
 namespace grains::sim {
@@ -384,6 +385,8 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   wall_items.assign(walls.count(), {});
   walls.for_each([&](const auto& wall, std::size_t w) {
     wall.near_list(p, n_own, skin_ + reach_, shapes, wall_near[w], wall_items[w]);
+    if (!std::decay_t<decltype(wall)>::near_items && !wall_items[w].items.empty())  // the stage would not read them
+      throw std::logic_error("wall " + wall.name + ": its near list has items, but its kind does not say near_items = true");
     if (frozen_) drop_frozen(p, wall_near[w], wall_items[w]);
   });
 

@@ -44,6 +44,7 @@ struct MeshWall : WallCommon {
   static constexpr const char* kind = "mesh";
   static constexpr const char* position_name = "offset";
   static constexpr bool controllable = true;  // walls[].control (wall_control.hpp)
+  static constexpr bool near_items = true;  // each listed particle's near triangles
   static constexpr bool tagged = true;  // slots carry the contact's normal, and a mask of those held (ParticleStore::wall_tags)
   static constexpr int kMaxFound = 16;  // contacts looked at per particle and step
 
@@ -233,7 +234,9 @@ struct MeshWall : WallCommon {
     }
     // Spheres: the common case, one triangle whose face the centre is over,
     // straight to the contact (what sphere_contacts computes for it).
-    const Vec3 x = to_body(p.x[i]);
+    // The centre in the mesh's frame: p.x[i] itself at rest (no copy).
+    Vec3 moved;
+    const Vec3& x = moving ? (moved = to_body(p.x[i])) : p.x[i];
     const double r = slots.grown(p.radius[i]);
     const int t = surface->sphere_screen(x, r, tris);
     if (t == contact::MeshSurface::kNone) return;
@@ -290,11 +293,10 @@ struct MeshWall : WallCommon {
   GRAINS_INLINE int take_slot(const Vec3& normal, const Slots& slots, unsigned& held, unsigned taken) const {
     int slot = -1;
     const unsigned cand = held & ~taken;
-    auto cosine = [&](int k) {
-      const double* t = slots.tag(k);
-      return t[0] * normal.x() + t[1] * normal.y() + t[2] * normal.z();
-    };
-    if (cand != 0 && (cand & (cand - 1)) == 0) {  // the usual case: one
+    auto cosine = [&](int k) { return Eigen::Map<const Vec3>(slots.tag(k)).dot(normal); };
+    if (cand == 1u) {  // the usual case: slot 0 alone
+      if (cosine(0) > 0.5) slot = 0;
+    } else if (cand != 0 && (cand & (cand - 1)) == 0) {  // another alone
       const int k = __builtin_ctz(cand);
       if (cosine(k) > 0.5) slot = k;
     } else {

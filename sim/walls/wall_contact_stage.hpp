@@ -15,6 +15,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <stdexcept>
 
 #include <omp.h>
 
@@ -132,8 +133,12 @@ class WallStage final : public Stage {
     // (None without rows: the fields may be empty, their data() null.)
     double* const hist0 = H > 0 && nn > 0 ? p.wall_history.data() + wall.history_slot * H : nullptr;
     double* const tags0 = Tagged && nn > 0 ? p.wall_tags.data() + wall.tag_offset : nullptr;
+    // A kind with near items has a range of them for every row (near_list);
+    // the others none.
+    if (K::near_items && items.start.size() != near.size() + 1)
+      throw std::logic_error("wall " + wall.name + ": its near items do not match its near list");
     const std::uint32_t* const item = items.items.data();
-    const std::uint32_t* const item_start = items.start.size() > near.size() ? items.start.data() : nullptr;
+    const std::uint32_t* const item_start = items.start.data();
     const std::uint32_t* const row_particle = near.data();
     // Each particle appears once per wall: rows are independent. (The row's
     // constants are captured by value: by reference each read would go
@@ -153,8 +158,8 @@ class WallStage final : public Stage {
       const WallSlots<H, Tagged, Beyond> sl{hist, tags, slots, reach};
       unsigned used = 0;  // the slots a contact used this step
       const std::span<const std::uint32_t> row =
-          item_start ? std::span<const std::uint32_t>(item + item_start[m], item + item_start[m + 1])
-                     : std::span<const std::uint32_t>();
+          K::near_items ? std::span<const std::uint32_t>(item + item_start[m], item + item_start[m + 1])
+                        : std::span<const std::uint32_t>();
       wall.template contacts<Shapes>(p, i, row, sl,
                                      [&](const contact::ContactGeometry& found, int slot) {
         // (A kind found the contact of the sphere grown by the reach: the overlap and R* are the sphere's.)

@@ -9,7 +9,8 @@
 //   near_list(p, n, skin, shapes, out, items)
 //                              the particles of [0, n) that may touch it before they move the skin
 //                              (bounding radius + skin; rebuilt with the neighbour list), and for
-//                              each what the kind wants at hand (items: a mesh's near triangles)
+//                              each what the kind wants at hand (items: a mesh's near triangles;
+//                              such a kind sets near_items = true)
 //   contacts<Shapes>(p, i, items, slots, emit)
 //                              emit(geometry, slot) for each contact of particle i (sphere, or
 //                              ellipsoid when Shapes), slot the history slot it continues (< 32;
@@ -62,6 +63,9 @@ struct WallCommon {
   /// doubles per slot in ParticleStore::wall_tags) start at this offset there.
   int tag_offset = 0;
   static constexpr bool tagged = false;
+  /// Kinds whose near list carries items per listed particle (near_items =
+  /// true: a mesh's near triangles, NearItems), which contacts() receives.
+  static constexpr bool near_items = false;
 
   /// Defaults a kind may replace: its surface's velocity at a point, a bound
   /// on any of its points' speed.
