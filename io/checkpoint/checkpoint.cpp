@@ -421,16 +421,21 @@ void read_neighbors(const h5::File& f, sim::Scene& s) {
   nl.wall_items.assign(s.walls.count(), {});
   if (f.exists("/neighbor/wall_near")) {
     near("/neighbor/wall_near", s.walls.count());
-    for (std::size_t k = 0; k < s.walls.count(); ++k) {
+    s.walls.for_each([&](const auto& wall, std::size_t k) {
       const std::string ds = "/neighbor/wall_items/" + std::to_string(k);
-      if (!f.exists(ds)) continue;
+      if (!f.exists(ds)) {  // a kind without items writes none
+        if (std::decay_t<decltype(wall)>::near_items && !nl.wall_near[k].empty())
+          throw CheckpointError(f.path() + ": wall " + std::to_string(k) + " (" + wall.name +
+                                ") has a near list but no near items, " + ds + " (corrupt checkpoint)");
+        return;
+      }
       auto& it = nl.wall_items[k];
       f.read_vector(ds + "_start", it.start, f.shape(ds + "_start").first, 1);
       f.read_vector(ds, it.items, f.shape(ds).first, 1);
       bool ok = it.start.size() == nl.wall_near[k].size() + 1 && it.start.front() == 0 &&
                 it.start.back() == it.items.size() && std::is_sorted(it.start.begin(), it.start.end());
       if (!ok) throw CheckpointError(f.path() + ": wall " + std::to_string(k) + "'s near items do not fit its near list (corrupt checkpoint)");
-    }
+    });
   } else {
     near("/neighbor/plane_near", s.walls.of<sim::PlaneWall>().size());
     near("/neighbor/cylinder_near", s.walls.of<sim::CylinderWall>().size());

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <random>
 #include <unistd.h>
+#include <hdf5.h>
 #include <sstream>
 
 #include "contact/ellipsoid/ellipsoid_mesh.hpp"
@@ -612,6 +613,24 @@ TEST(MeshWall, NearItemsThatDoNotFitItsNearListAreAnError) {
   s.pipeline.step(sc);
   ASSERT_EQ(sc.neighbors.wall_near.at(0).size(), 1u);
   ASSERT_EQ(sc.neighbors.wall_items.at(0).start.size(), 2u);
+  // A checkpoint whose items were lost is refused at restore, saying which.
+  const fs::path h5 = scratch("floor_items.h5");
+  io::write_checkpoint(h5, sc, {"floor.yaml", "text", "effective", {}, {}, {}});
+  {
+    const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    EXPECT_GE(H5Ldelete(f, "/neighbor/wall_items/0", H5P_DEFAULT), 0);
+    H5Fclose(f);
+  }
+  try {
+    (void)io::read_checkpoint(h5, sc);
+    FAIL() << "no error";
+  } catch (const io::CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("wall 0 (floor) has a near list but no near items, /neighbor/wall_items/0 "
+                                         "(corrupt checkpoint)"),
+              std::string::npos)
+        << e.what();
+  }
   sc.neighbors.wall_items[0].start.pop_back();
   try {
     s.pipeline.step(sc);
