@@ -42,6 +42,7 @@ class MassOutput final : public sim::Stage {
   std::string name() const override;
   sim::Phase phase() const override { return sim::Phase::Output; }
   void run(sim::Scene& s) override;
+  bool reads_state(const sim::Scene& s) const override { return every_ > 0 && s.clock.step % every_ == 0; }
   void finish(sim::Scene& s) override;
   void start(sim::Scene& s) override { write_row(s); }
   void restart(sim::Scene& s, const sim::RestartPoint&) override { resume(s); }

@@ -17,6 +17,7 @@ class Progress final : public sim::Stage {
   sim::Phase phase() const override { return sim::Phase::Output; }
   void run(sim::Scene& s) override;
   void finish(sim::Scene& s) override;
+  bool reads_state(const sim::Scene&) const override { return false; }  // the clock and the count only
 
  private:
   void print(const sim::Scene& s, bool final);
@@ -44,6 +45,7 @@ class BlowUpCheck final : public sim::Stage {
   std::string name() const override { return "check.blow_up(every " + std::to_string(every_) + " steps)"; }
   sim::Phase phase() const override { return sim::Phase::Output; }
   void run(sim::Scene& s) override;
+  bool reads_state(const sim::Scene& s) const override { return s.clock.step % every_ == 0; }
   /// The diagnosis of an unphysical state (non-finite or too fast particles,
   /// particle pairs overlapping by more than half the smaller radius), or an
   /// empty string when the state is sound. Checkpoint writers call it so that

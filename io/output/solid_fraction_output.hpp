@@ -34,6 +34,7 @@ class SolidFractionOutput final : public sim::Stage {
   std::string name() const override;
   sim::Phase phase() const override { return sim::Phase::Output; }
   void run(sim::Scene& s) override;
+  bool reads_state(const sim::Scene& s) const override { return every_ > 0 && s.clock.step % every_ == 0; }
   void finish(sim::Scene& s) override;
   /// The field of the initial state (a restart continues the series as it is).
   void start(sim::Scene& s) override { write_frame(s); }

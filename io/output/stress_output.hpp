@@ -51,6 +51,7 @@ class StressOutput final : public sim::Stage {
   void start(sim::Scene& s) override;
   void restart(sim::Scene& s, const sim::RestartPoint&) override;
   void run(sim::Scene& s) override;
+  bool reads_state(const sim::Scene& s) const override { return s.stress_probe == &probe_; }  // it measures
   void finish(sim::Scene& s) override;
   std::string summary_json() const override;
 

@@ -31,6 +31,7 @@ class WallLoadOutput final : public sim::Stage {
   void start(sim::Scene& s) override;
   void restart(sim::Scene& s, const sim::RestartPoint&) override;
   void run(sim::Scene& s) override;
+  bool reads_state(const sim::Scene& s) const override { return every_ > 0 && s.clock.step % every_ == 0; }
   void finish(sim::Scene& s) override;
   std::string summary_json() const override;
 

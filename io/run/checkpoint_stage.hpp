@@ -20,6 +20,7 @@ class CheckpointStage final : public sim::Stage {
   std::string name() const override;
   sim::Phase phase() const override { return sim::Phase::Output; }
   void run(sim::Scene& s) override;
+  bool reads_state(const sim::Scene& s) const override { return every_ > 0 && s.clock.step % every_ == 0; }
   /// The final checkpoint, when periodic checkpoints are on.
   void finish(sim::Scene& s) override;
 

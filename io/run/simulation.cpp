@@ -114,6 +114,7 @@ std::filesystem::path emergency_dir(const RunOptions& opt) {
 // folder, else into the emergency folder. Returns the file, or empty with
 // the reasons in `why`.
 std::filesystem::path save_somewhere(CheckpointStage& ck, Simulation& s, const RunOptions& opt, std::string& why) {
+  s.pipeline.settle(s.scene);  // a kick left waiting (Pipeline::step) is done first
   try {
     return ck.save_now(s.scene);
   } catch (const BlowUp&) {
@@ -336,12 +337,15 @@ std::int64_t Runner::advance(std::int64_t target, const std::function<bool()>& s
     // Under MPI the ranks agree on a signal (mpirun forwards it to all,
     // not necessarily at the same step), so they stop at the same step.
     auto stop = [&comm] { return comm.parallel() ? comm.any(g_signal != 0) : g_signal != 0; };
+    // Between two steps of this loop the kick may wait for the next drift
+    // (Pipeline::step); never after the last, and the loop's end settles it.
     while (s.scene.clock.step < target && !stop() && !(stop_asked && stop_asked())) {
       particle_steps_ += static_cast<double>(s.scene.particles.n_owned());
-      s.pipeline.step(s.scene);
+      s.pipeline.step(s.scene, s.scene.clock.step + 1 < target);
       pair_steps_ += static_cast<double>(s.scene.neighbors.partner.size());
       steps_run_ += 1;
     }
+    s.pipeline.settle(s.scene);
     if (stop()) {
       r_.signal = g_signal != 0 ? static_cast<int>(g_signal) : SIGTERM;
       std::string why;
@@ -379,6 +383,7 @@ void Runner::output_failed(const std::exception& e) {
 }
 
 std::filesystem::path Runner::checkpoint() {
+  s_.pipeline.settle(s_.scene);
   return ck_->save_now(s_.scene);
 }
 

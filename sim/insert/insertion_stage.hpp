@@ -31,6 +31,11 @@ class InsertionStage final : public Stage {
   std::string name() const override;
   Phase phase() const override { return Phase::Output; }
   void run(Scene& s) override;
+  bool reads_state(const Scene& s) const override {  // it inserts at this step
+    for (std::size_t e = 0; e < entries_.size(); ++e)
+      if (event_at(e, s.clock.step) >= 0) return true;
+    return false;
+  }
   std::string summary_json() const override;
 
   struct Totals {

@@ -6,6 +6,14 @@
 // freedom instantiates the translational version only. Spheres have an
 // isotropic inertia, so w integrates directly in the world frame; bodies
 // with orientation use the quaternion integrator (integrate/rotation.hpp).
+//
+// Between two steps whose state nobody reads (no frame, check or checkpoint
+// at that step: Pipeline::step with may_wait), the kick waits and the next
+// drift does both half kicks in one pass over v, w, F, T, 1/m and I: the
+// same additions in the same order, so the same bits, with the kick's
+// stream of every grain's fields saved (the integration passes are bound by
+// memory traffic, bench/RESULTS.md).
+#include <memory>
 #include <string>
 
 #include "sim/scene/stage.hpp"
@@ -31,9 +39,40 @@ inline void verlet_half_kick(ParticleStore& p, double half_dt) {
     });
 }
 
+// Both half kicks at once: v += h1 F/m, then v += h2 F/m (and w likewise),
+// each as verlet_half_kick adds it.
+template <bool Rotation>
+inline void verlet_two_half_kicks(ParticleStore& p, double h1, double h2) {
+  const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
+  parallel_for(use_threads(n), n, [&](std::ptrdiff_t i) {
+    const Vec3 f = p.f[i];
+    Vec3 v = p.v[i];
+    v += (h1 * p.inv_mass[i]) * f;
+    v += (h2 * p.inv_mass[i]) * f;
+    p.v[i] = v;
+  });
+  if constexpr (Rotation)
+    parallel_for(use_threads(n), n, [&](std::ptrdiff_t i) {
+      const Vec3 t = p.torque[i];
+      Vec3 w = p.omega[i];
+      w += (h1 / p.inertia[i].x()) * t;
+      w += (h2 / p.inertia[i].x()) * t;
+      p.omega[i] = w;
+    });
+}
+
+/// The kick that waits for the next drift: shared by the two stages.
+struct WaitingKick {
+  bool waiting = false;
+  double half_dt = 0;  // the kick's own dt / 2
+};
+
 template <bool Rotation, bool SkipClumpBalls = false>
 class VerletDrift final : public Stage {
  public:
+  // `w` is shared with the kick stage of the same pipeline; the drift is the
+  // drift phase's first stage, so nothing reads the state before it settles.
+  explicit VerletDrift(std::shared_ptr<WaitingKick> w) : w_(std::move(w)) {}
   std::string name() const override {
     return std::string(Rotation ? "verlet.kick_drift+rotation" : "verlet.kick_drift") +
            (SkipClumpBalls ? "(free particles)" : "");
@@ -42,7 +81,12 @@ class VerletDrift final : public Stage {
   void run(Scene& s) override {
     ParticleStore& p = s.particles;
     const double dt = s.clock.dt;
-    verlet_half_kick<Rotation, SkipClumpBalls>(p, 0.5 * dt);
+    if (!SkipClumpBalls && w_->waiting) {
+      w_->waiting = false;
+      verlet_two_half_kicks<Rotation>(p, w_->half_dt, 0.5 * dt);
+    } else {
+      verlet_half_kick<Rotation, SkipClumpBalls>(p, 0.5 * dt);
+    }
     const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
     parallel_for(use_threads(n), n, [&](std::ptrdiff_t i) {
       if constexpr (SkipClumpBalls)
@@ -50,16 +94,34 @@ class VerletDrift final : public Stage {
       p.x[i] += dt * p.v[i];
     });
   }
+
+ private:
+  std::shared_ptr<WaitingKick> w_;
 };
 
 template <bool Rotation, bool SkipClumpBalls = false>
 class VerletKick final : public Stage {
  public:
+  explicit VerletKick(std::shared_ptr<WaitingKick> w) : w_(std::move(w)) {}
   std::string name() const override {
     return std::string(Rotation ? "verlet.kick+rotation" : "verlet.kick") + (SkipClumpBalls ? "(free particles)" : "");
   }
   Phase phase() const override { return Phase::Kick; }
   void run(Scene& s) override { verlet_half_kick<Rotation, SkipClumpBalls>(s.particles, 0.5 * s.clock.dt); }
+  // Clump balls' kick shares its phase with the bodies' (never alone).
+  bool can_wait() const override { return !SkipClumpBalls; }
+  void wait(Scene& s) override {
+    w_->waiting = true;
+    w_->half_dt = 0.5 * s.clock.dt;
+  }
+  void settle(Scene& s) override {
+    if (!w_->waiting) return;
+    w_->waiting = false;
+    verlet_half_kick<Rotation, SkipClumpBalls>(s.particles, w_->half_dt);
+  }
+
+ private:
+  std::shared_ptr<WaitingKick> w_;
 };
 
 /// Moves walls with their prescribed velocities (only when some wall moves).

@@ -96,9 +96,10 @@ void add_clear(Pipeline& p, bool gravity) {
 
 template <bool Rot, bool Clumps>
 void add_integrator(Pipeline& p, bool gravity) {
-  p.add(std::make_unique<VerletDrift<Rot, Clumps>>());
+  auto waiting = std::make_shared<WaitingKick>();  // the kick left to the next drift
+  p.add(std::make_unique<VerletDrift<Rot, Clumps>>(waiting));
   add_clear<Rot, Clumps>(p, gravity);
-  p.add(std::make_unique<VerletKick<Rot, Clumps>>());
+  p.add(std::make_unique<VerletKick<Rot, Clumps>>(waiting));
 }
 
 template <bool Clumps>

@@ -24,11 +24,15 @@ void Pipeline::add(std::unique_ptr<Stage> s) {
   stages_.insert(it, std::move(s));
   seconds_.assign(stages_.size(), 0.0);
   driver_ = -1;
-  for (std::size_t k = 0; k < stages_.size(); ++k)
+  int kicks = 0;
+  for (std::size_t k = 0; k < stages_.size(); ++k) {
     if (stages_[k]->is_driver()) {
       if (driver_ >= 0) throw std::logic_error("a pipeline takes one driver stage");
       driver_ = static_cast<int>(k);
     }
+    if (stages_[k]->phase() == Phase::Kick && kicks++ == 0) waiter_ = static_cast<int>(k);
+  }
+  if (kicks != 1 || driver_ >= 0 || !stages_[static_cast<std::size_t>(waiter_)]->can_wait()) waiter_ = -1;
 }
 
 void Pipeline::run_timed(std::size_t k, Scene& s) {
@@ -61,16 +65,35 @@ void Pipeline::initialize(Scene& s) {
   s.clock.dt = dt;
 }
 
-void Pipeline::step(Scene& s) {
+void Pipeline::step(Scene& s, bool may_wait) {
   std::size_t k = 0;
   if (driver_ >= 0) {
     run_timed(static_cast<std::size_t>(driver_), s);
     while (k < stages_.size() && stages_[k]->phase() != Phase::Output) ++k;
   }
-  for (; k < stages_.size() && stages_[k]->phase() != Phase::Output; ++k) run_timed(k, s);
-  s.clock.step += 1;
-  s.clock.time = static_cast<double>(s.clock.step) * s.clock.dt;
+  if (may_wait && waiter_ >= 0) {
+    // The kick phase is one stage that can wait, and it reads the clock's dt
+    // only: the clock moves first, so that the output stages can say whether
+    // they read the state at the step it now shows.
+    for (; k < stages_.size() && stages_[k]->phase() != Phase::Kick; ++k) run_timed(k, s);
+    s.clock.step += 1;
+    s.clock.time = static_cast<double>(s.clock.step) * s.clock.dt;
+    const bool read = std::any_of(stages_.begin() + k + 1, stages_.end(), [&](const auto& o) { return o->reads_state(s); });
+    if (read)
+      run_timed(k, s);
+    else
+      stages_[k]->wait(s);
+    ++k;
+  } else {
+    for (; k < stages_.size() && stages_[k]->phase() != Phase::Output; ++k) run_timed(k, s);
+    s.clock.step += 1;
+    s.clock.time = static_cast<double>(s.clock.step) * s.clock.dt;
+  }
   for (; k < stages_.size(); ++k) run_timed(k, s);
+}
+
+void Pipeline::settle(Scene& s) {
+  for (auto& st : stages_) st->settle(s);
 }
 
 void Pipeline::start(Scene& s) {
@@ -82,6 +105,7 @@ void Pipeline::restart(Scene& s, const RestartPoint& r) {
 }
 
 void Pipeline::finish(Scene& s) {
+  settle(s);
   for (auto& st : stages_) st->finish(s);
 }
 

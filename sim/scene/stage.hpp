@@ -51,6 +51,20 @@ class Stage {
   /// phase before the output phase.
   virtual bool is_driver() const { return false; }
   virtual void drive(Scene& s, Pipeline&) { run(s); }
+  /// Output phase: whether run(), at the step the clock now shows, reads the
+  /// particles' velocities or changes the particles (a frame, a check, a
+  /// checkpoint, an insertion). The default says it does. At a step where no
+  /// output stage does, Pipeline::step may leave the second half kick
+  /// waiting for the next step's drift (see can_wait()).
+  virtual bool reads_state(const Scene&) const { return true; }
+  /// A kick-phase stage that may leave its work to the next step's drift
+  /// phase, which then reads each grain's fields once for both half kicks
+  /// (the Verlet kick of spheres). Only when it is the kick phase's one stage.
+  virtual bool can_wait() const { return false; }
+  /// Leaves this step's work waiting (can_wait() stages only).
+  virtual void wait(Scene&) {}
+  /// Does now any work left waiting (the run pauses, a checkpoint is taken).
+  virtual void settle(Scene&) {}
   /// Extra figures for summary.json, as the members of a JSON object
   /// ("\"key\": value, ..."); empty when the stage has none.
   virtual std::string summary_json() const { return {}; }
@@ -64,7 +78,13 @@ class Pipeline {
   void initialize(Scene& s);
   /// One time step: drift, neighbour, force, kick, clock, output. With a
   /// driver stage: the driver (which runs the other phases itself), clock, output.
-  void step(Scene& s);
+  /// With `may_wait`, the kick may be left to the next step's drift when no
+  /// output stage reads the state at this step (Stage::can_wait): the state
+  /// between two steps is then complete only after settle(). The results are
+  /// the same bits either way.
+  void step(Scene& s, bool may_wait = false);
+  /// Completes work left waiting by step(s, true) (a no-op when none waits).
+  void settle(Scene& s);
   /// Runs the stages of one phase (timed), e.g. the force phase at a driver's trial state.
   void run_phase(Scene& s, Phase p);
   void finish(Scene& s);
@@ -83,6 +103,7 @@ class Pipeline {
   std::vector<double> seconds_;
   double nested_ = 0;  // seconds of the stages run inside the current one
   int driver_ = -1;    // index of the driver stage, or -1
+  int waiter_ = -1;    // index of the kick phase's one stage when it can wait, or -1
 };
 
 }  // namespace grains::sim
