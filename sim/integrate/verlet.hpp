@@ -21,44 +21,69 @@
 
 namespace grains::sim {
 
+// The loops read the fields through pointers taken before them and the steps
+// as copies: Eigen's packet stores may alias anything, so a field reached
+// through the store (p.v[i]) or a step held by reference would be loaded
+// again at every particle.
+
 // SkipClumpBalls (scenes with clumps only): balls of a clump are moved by
 // their body (integrate/clump_bodies.hpp), not here.
 template <bool Rotation, bool SkipClumpBalls = false>
-inline void verlet_half_kick(ParticleStore& p, double half_dt) {
+inline void verlet_half_kick(ParticleStore& p, const double half_dt) {
   const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
-  parallel_for(use_threads(n), n, [&](std::ptrdiff_t i) {
-    if constexpr (SkipClumpBalls)
-      if (p.body[i] >= 0) return;
-    p.v[i] += (half_dt * p.inv_mass[i]) * p.f[i];
-  });
-  if constexpr (Rotation)
-    parallel_for(use_threads(n), n, [&](std::ptrdiff_t i) {
+  const std::int64_t* body = SkipClumpBalls ? p.body.data() : nullptr;
+  {
+    Vec3* v = p.v.data();
+    const Vec3* f = p.f.data();
+    const double* im = p.inv_mass.data();
+    parallel_for(use_threads(n), n, [=](std::ptrdiff_t i) {
       if constexpr (SkipClumpBalls)
-        if (p.body[i] >= 0) return;
-      p.omega[i] += (half_dt / p.inertia[i].x()) * p.torque[i];
+        if (body[i] >= 0) return;
+      v[i] += (half_dt * im[i]) * f[i];
     });
+  }
+  if constexpr (Rotation) {
+    Vec3* w = p.omega.data();
+    const Vec3* t = p.torque.data();
+    const Vec3* in = p.inertia.data();
+    parallel_for(use_threads(n), n, [=](std::ptrdiff_t i) {
+      if constexpr (SkipClumpBalls)
+        if (body[i] >= 0) return;
+      w[i] += (half_dt / in[i].x()) * t[i];
+    });
+  }
 }
 
 // Both half kicks at once: v += h1 F/m, then v += h2 F/m (and w likewise),
-// each as verlet_half_kick adds it.
+// each as verlet_half_kick adds it; with equal steps the one quotient h/I
+// serves both (the same bits).
 template <bool Rotation>
-inline void verlet_two_half_kicks(ParticleStore& p, double h1, double h2) {
+inline void verlet_two_half_kicks(ParticleStore& p, const double h1, const double h2) {
   const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
-  parallel_for(use_threads(n), n, [&](std::ptrdiff_t i) {
-    const Vec3 f = p.f[i];
-    Vec3 v = p.v[i];
-    v += (h1 * p.inv_mass[i]) * f;
-    v += (h2 * p.inv_mass[i]) * f;
-    p.v[i] = v;
-  });
-  if constexpr (Rotation)
-    parallel_for(use_threads(n), n, [&](std::ptrdiff_t i) {
-      const Vec3 t = p.torque[i];
-      Vec3 w = p.omega[i];
-      w += (h1 / p.inertia[i].x()) * t;
-      w += (h2 / p.inertia[i].x()) * t;
-      p.omega[i] = w;
+  {
+    Vec3* v = p.v.data();
+    const Vec3* f = p.f.data();
+    const double* im = p.inv_mass.data();
+    parallel_for(use_threads(n), n, [=](std::ptrdiff_t i) {
+      const double c1 = h1 * im[i], c2 = h2 * im[i];
+      v[i] = (v[i] + c1 * f[i]) + c2 * f[i];
     });
+  }
+  if constexpr (Rotation) {
+    Vec3* w = p.omega.data();
+    const Vec3* t = p.torque.data();
+    const Vec3* in = p.inertia.data();
+    if (h1 == h2)
+      parallel_for(use_threads(n), n, [=](std::ptrdiff_t i) {
+        const double c = h1 / in[i].x();
+        w[i] = (w[i] + c * t[i]) + c * t[i];
+      });
+    else
+      parallel_for(use_threads(n), n, [=](std::ptrdiff_t i) {
+        const double c1 = h1 / in[i].x(), c2 = h2 / in[i].x();
+        w[i] = (w[i] + c1 * t[i]) + c2 * t[i];
+      });
+  }
 }
 
 /// The kick that waits for the next drift: shared by the two stages.
@@ -88,10 +113,13 @@ class VerletDrift final : public Stage {
       verlet_half_kick<Rotation, SkipClumpBalls>(p, 0.5 * dt);
     }
     const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
-    parallel_for(use_threads(n), n, [&](std::ptrdiff_t i) {
+    Vec3* x = p.x.data();
+    const Vec3* v = p.v.data();
+    const std::int64_t* body = SkipClumpBalls ? p.body.data() : nullptr;
+    parallel_for(use_threads(n), n, [=](std::ptrdiff_t i) {
       if constexpr (SkipClumpBalls)
-        if (p.body[i] >= 0) return;
-      p.x[i] += dt * p.v[i];
+        if (body[i] >= 0) return;
+      x[i] += dt * v[i];
     });
   }
 

@@ -100,14 +100,42 @@ class PairContactStage final : public Stage {
 
   // Serial: forces added as they come (fastest; order = list order). With
   // Probe, each contact also goes into the stress probe.
+  //
+  // The entries that do not touch (most of a loose list) are passed over here,
+  // with contact()'s test and its clearing of a spring, through pointers held
+  // in registers: the stores of a touching entry (a byte, Eigen's packets) may
+  // alias anything, so through p and nl each pointer would be loaded again at
+  // every entry, on the path of the partner's position that a mispredicted
+  // touch branch exposes. contact() tests a touching entry again (same bits).
   template <bool Probe>
   void run_direct(Scene& s) {
     ParticleStore& p = s.particles;
-    const NeighborList& nl = s.neighbors;
+    NeighborList& nl = s.neighbors;
     const std::size_t rows = nl.row_start.empty() ? 0 : nl.row_start.size() - 1;
+    const std::uint32_t* row_start = nl.row_start.data();
+    const std::uint32_t* partner = nl.partner.data();
+    const Vec3* x = p.x.data();
+    const double* radius = p.radius.data();
+    std::uint8_t* may_touch = nl.may_touch.data();
+    [[maybe_unused]] double* history = nl.history.data();
+    const double reach = nl.reach();
     Vec3 f, ti, tj;
-    for (std::size_t i = 0; i < rows; ++i)
-      for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
+    for (std::size_t i = 0; i < rows; ++i) {
+      const Vec3 xi = x[i];
+      const double ri = radius[i];
+      const auto end = row_start[i + 1];
+      for (auto k = row_start[i]; k < end; ++k) {
+        {
+          const std::size_t j = partner[k];
+          const Vec3 d = xi - x[j];
+          const double rc = ri + radius[j] + reach;  // nl.contact_distance
+          if (d.squaredNorm() >= rc * rc) {
+            if constexpr (H > 0)
+              if (may_touch[k]) std::fill_n(history + static_cast<std::size_t>(k) * H, H, 0.0);
+            may_touch[k] = 0;
+            continue;
+          }
+        }
         if (!contact(s, i, k, f, ti, tj)) continue;
         const std::size_t j = nl.partner[k];
         p.f[i] += f;
@@ -118,6 +146,7 @@ class PairContactStage final : public Stage {
         }
         if constexpr (Probe) s.stress_probe->add_pair(0, p, i, j, f);
       }
+    }
   }
 
   // Threads / deterministic: per-entry results, then an ordered gather.

@@ -87,33 +87,24 @@ TEST(WaitingKick, WaitsOnlyAtStepsNoOutputReads) {
   EXPECT_EQ(log.settle, 2);
 }
 
+// Four steps with may_wait of a pipeline of the kick and `other` (if any).
+Log four_steps(bool can_wait, std::unique_ptr<Stage> other) {
+  Log log;
+  Pipeline p;
+  p.add(std::make_unique<Kick>(log, can_wait));
+  if (other) p.add(std::move(other));
+  Scene s;
+  for (int k = 0; k < 4; ++k) p.step(s, true);
+  return log;
+}
+
 TEST(WaitingKick, NeverWaitsWhenItCannotOrIsNotAloneOrAnOutputSaysNothing) {
-  {
-    Log log;
-    Pipeline p;
-    p.add(std::make_unique<Kick>(log, false));
-    Scene s;
-    for (int k = 0; k < 4; ++k) p.step(s, true);
-    EXPECT_EQ(log.run, 4);
-    EXPECT_EQ(log.wait, 0);
-  }
-  {
-    Log log;
-    Pipeline p;
-    p.add(std::make_unique<Kick>(log, true));
-    p.add(std::make_unique<Plain>(Phase::Kick));  // a second kick-phase stage (a servo's)
-    Scene s;
-    for (int k = 0; k < 4; ++k) p.step(s, true);
-    EXPECT_EQ(log.run, 4);
-    EXPECT_EQ(log.wait, 0);
-  }
-  {
-    Log log;
-    Pipeline p;
-    p.add(std::make_unique<Kick>(log, true));
-    p.add(std::make_unique<Plain>(Phase::Output));  // reads the state, as far as anyone knows
-    Scene s;
-    for (int k = 0; k < 4; ++k) p.step(s, true);
+  const Log alone = four_steps(true, nullptr);
+  EXPECT_EQ(alone.wait, 4);  // the case the others differ from
+  const Log cannot = four_steps(false, nullptr);
+  const Log second = four_steps(true, std::make_unique<Plain>(Phase::Kick));  // a servo's stage beside it
+  const Log output = four_steps(true, std::make_unique<Plain>(Phase::Output));  // reads, for all anyone knows
+  for (const Log& log : {cannot, second, output}) {
     EXPECT_EQ(log.run, 4);
     EXPECT_EQ(log.wait, 0);
   }
