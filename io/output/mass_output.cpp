@@ -89,7 +89,7 @@ void MassOutput::write_row(const sim::Scene& s) {
 }
 
 void MassOutput::run(sim::Scene& s) {
-  if (every_ > 0 && s.clock.step % every_ == 0) write_row(s);
+  if (reads_state(s)) write_row(s);  // its cadence
 }
 
 void MassOutput::finish(sim::Scene& s) {

@@ -56,7 +56,7 @@ std::vector<double> SolidFractionOutput::field(const sim::Scene& s, std::array<d
 }
 
 void SolidFractionOutput::run(sim::Scene& s) {
-  if (every_ > 0 && s.clock.step % every_ == 0) write_frame(s);
+  if (reads_state(s)) write_frame(s);  // its cadence
 }
 
 void SolidFractionOutput::finish(sim::Scene& s) {

@@ -65,7 +65,7 @@ std::string VtkOutput::name() const {
 }
 
 void VtkOutput::run(sim::Scene& s) {
-  if (every_ > 0 && s.clock.step % every_ == 0) write_frame(s);
+  if (reads_state(s)) write_frame(s);  // its cadence
 }
 
 void VtkOutput::finish(sim::Scene& s) {

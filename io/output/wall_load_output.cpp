@@ -106,7 +106,7 @@ void WallLoadOutput::write_rows(const sim::Scene& s) {
 }
 
 void WallLoadOutput::run(sim::Scene& s) {
-  if (every_ > 0 && s.clock.step % every_ == 0) write_rows(s);
+  if (reads_state(s)) write_rows(s);  // its cadence
 }
 
 void WallLoadOutput::finish(sim::Scene& s) {

@@ -23,7 +23,7 @@ std::string CheckpointStage::name() const {
 }
 
 void CheckpointStage::run(sim::Scene& s) {
-  if (every_ > 0 && s.clock.step % every_ == 0) save_now(s);
+  if (reads_state(s)) save_now(s);  // its cadence
 }
 
 void CheckpointStage::finish(sim::Scene& s) {
