@@ -1,5 +1,5 @@
 // The Hertz–Mindlin force loop of sphere pairs in lanes: see
-// sphere_pair_lanes.hpp. Moved here from pair_contact_stage.hpp unchanged.
+// sphere_pair_lanes.hpp.
 #include "sim/laws/sphere_pair_lanes.hpp"
 
 #include <algorithm>
@@ -26,42 +26,89 @@ void copy_lane(SphereContactBatch& b, int from, int to) {
 
 // Lanes: the touching entries of rows [row_begin, row_end) go into batches
 // (the others' history is cleared as in contact()); each full batch is
-// computed and handed to apply(lane, i, k, batch) in list order. The list
+// computed and handed to apply(lane, i, j, k, batch) in list order. The list
 // is read in two passes per batch, so that neither has a branch that the
 // processor cannot predict: the first tests every entry and writes its
 // geometry into the next free lane, which only a touching entry keeps (a
 // quarter of the entries in a dense bed do not touch, in no pattern); the
 // second gathers the motion, constants and springs of the kept lanes.
+// (Gathering everything in the first pass, for every entry, measured 3 %
+// slower on the 10^4 bed: bench/RESULTS.md, 2026-11-29.)
+//
+// Every field is read through a pointer taken before the loops, apply is a
+// copy (a lambda holding its target pointers) and the lane count a local:
+// the stores of a byte (may_touch) or of a double (the batch, the forces)
+// may alias anything reachable through the particle store, the list or a
+// reference, so through them each pointer would be loaded again at every
+// entry. The arithmetic is the scalar law's, in its order (R* and m* as
+// NeighborList::pair_radius and pair_mass compute them).
 template <bool Prefetch, class Apply>
-void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::size_t row_end, Apply&& apply) {
-  ParticleStore& p = s.particles;
+void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::size_t row_end, Apply apply) {
+  constexpr int kSize = SphereContactBatch::kSize;
+  const ParticleStore& p = s.particles;
   NeighborList& nl = s.neighbors;
-  std::uint32_t row_of[SphereContactBatch::kSize], entry_of[SphereContactBatch::kSize];
+  const std::uint32_t* const row_start = nl.row_start.data();
+  const std::uint32_t* const partner = nl.partner.data();
+  std::uint8_t* const may_touch = nl.may_touch.data();
+  double* const history = nl.history.data();
+  const Vec3* const x = p.x.data();
+  const Vec3* const v = p.v.data();
+  const Vec3* const w = p.omega.data();
+  const double* const radius = p.radius.data();
+  const double* const mass = p.mass.data();
+  const std::int32_t* const material = p.material.data();
+  const double reach = nl.reach();
+  const bool frozen = nl.frozen();
+  const PairTable& pairs = s.pairs;
+  // One material (the common case): the pair constants are the same in every
+  // lane, written once here rather than at every contact.
+  const bool one_material = pairs.size() == 1;
+  if (one_material) {
+    const PairParams& pp = pairs(0, 0);
+    std::fill_n(b.E, kSize, pp.E_eff), std::fill_n(b.G, kSize, pp.G_eff), std::fill_n(b.a, kSize, pp.damping);
+    std::fill_n(b.tdr, kSize, pp.tangential_damping_ratio), std::fill_n(b.mu, kSize, pp.friction);
+  }
+  std::uint32_t row_of[kSize], entry_of[kSize], partner_of[kSize];
+  alignas(64) double mi[kSize], mj[kSize];
+  int n = 0;  // lanes filled
   b.dt = s.clock.dt;
-  b.count = 0;
-  auto flush = [&] {
-    if (b.count == 0) return;
-    for (int l = 0; l < b.count; ++l) {
-      const std::size_t i = row_of[l], k = entry_of[l], j = nl.partner[k];
-      const Vec3 v = p.v[i] - p.v[j];
-      b.vx[l] = v.x(), b.vy[l] = v.y(), b.vz[l] = v.z();
-      b.wix[l] = p.omega[i].x(), b.wiy[l] = p.omega[i].y(), b.wiz[l] = p.omega[i].z();
-      b.wjx[l] = p.omega[j].x(), b.wjy[l] = p.omega[j].y(), b.wjz[l] = p.omega[j].z();
-      b.R[l] = NeighborList::pair_radius(p, i, j), b.m[l] = nl.pair_mass(p, i, j);
-      const PairParams& pp = s.pairs(p.material[i], p.material[j]);
-      b.E[l] = pp.E_eff, b.G[l] = pp.G_eff, b.a[l] = pp.damping, b.tdr[l] = pp.tangential_damping_ratio;
-      b.mu[l] = pp.friction;
-      const double* h = nl.history.data() + k * 3;
+  // (Inlined at both calls: a call would keep the lane count in memory, its
+  // every increment a store and a load on the path of the next entry.)
+  auto flush = [&]() __attribute__((always_inline)) {
+    if (n == 0) return;
+    for (int l = 0; l < n; ++l) {
+      const std::size_t i = row_of[l], k = entry_of[l], j = partner_of[l];
+      const Vec3 dv = v[i] - v[j];
+      b.vx[l] = dv.x(), b.vy[l] = dv.y(), b.vz[l] = dv.z();
+      b.wix[l] = w[i].x(), b.wiy[l] = w[i].y(), b.wiz[l] = w[i].z();
+      b.wjx[l] = w[j].x(), b.wjy[l] = w[j].y(), b.wjz[l] = w[j].z();
+      if (frozen)
+        mi[l] = nl.pair_mass(p, i, j), mj[l] = 0;
+      else
+        mi[l] = mass[i], mj[l] = mass[j];
+      if (!one_material) {
+        const PairParams& pp = pairs(material[i], material[j]);
+        b.E[l] = pp.E_eff, b.G[l] = pp.G_eff, b.a[l] = pp.damping, b.tdr[l] = pp.tangential_damping_ratio;
+        b.mu[l] = pp.friction;
+      }
+      const double* h = history + k * 3;
       b.hx[l] = h[0], b.hy[l] = h[1], b.hz[l] = h[2];
     }
-    for (int l = b.count; l % 4 != 0; ++l) copy_lane(b, b.count - 1, l);  // padding: a finite contact
+    // R* = ri rj / (ri + rj), m* = mi mj / (mi + mj): lane by lane, as the list's pair_radius and pair_mass.
+    for (int l = 0; l < n; ++l) b.R[l] = b.ri[l] * b.rj[l] / (b.ri[l] + b.rj[l]);
+    if (frozen)
+      std::copy_n(mi, n, b.m);
+    else
+      for (int l = 0; l < n; ++l) b.m[l] = mi[l] * mj[l] / (mi[l] + mj[l]);
+    b.count = n;
+    for (int l = n; l % 4 != 0; ++l) copy_lane(b, n - 1, l);  // padding: a finite contact
     hertz_mindlin_lanes(b);
-    for (int l = 0; l < b.count; ++l) {
-      double* h = nl.history.data() + static_cast<std::size_t>(entry_of[l]) * 3;
+    for (int l = 0; l < n; ++l) {
+      double* h = history + static_cast<std::size_t>(entry_of[l]) * 3;
       h[0] = b.hx[l], h[1] = b.hy[l], h[2] = b.hz[l];
-      apply(l, row_of[l], entry_of[l], b);
+      apply(l, row_of[l], partner_of[l], entry_of[l], b);
     }
-    b.count = 0;
+    n = 0;
   };
   // Prefetches (no effect on results), in scenes larger than the cache
   // (kPrefetchFrom): there the partner of an entry lies up to a layer of
@@ -71,38 +118,44 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
   // it touches. (Measured, bench/RESULTS.md: -30 % time per pair in a bed
   // of 10^5 grains, +15 % in one of 10^4 that the cache holds.)
   constexpr std::uint32_t kPrefetch = 16;
-  const auto end = row_end > row_begin ? nl.row_start[row_end] : 0;
-  for (std::size_t i = row_begin; i < row_end; ++i)
-    for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
+  [[maybe_unused]] const Vec3* const f = p.f.data();
+  [[maybe_unused]] const Vec3* const torque = p.torque.data();
+  const auto end = row_end > row_begin ? row_start[row_end] : 0;
+  for (std::size_t i = row_begin; i < row_end; ++i) {
+    const Vec3 xi = x[i];
+    const double ri = radius[i];
+    const auto row_end_k = row_start[i + 1];
+    for (auto k = row_start[i]; k < row_end_k; ++k) {
       if constexpr (Prefetch) {
         if (k + kPrefetch < end) {
-          const std::size_t ahead = nl.partner[k + kPrefetch];
-          __builtin_prefetch(&p.x[ahead]);
-          __builtin_prefetch(&p.radius[ahead]);
+          const std::size_t ahead = partner[k + kPrefetch];
+          __builtin_prefetch(&x[ahead]);
+          __builtin_prefetch(&radius[ahead]);
         }
       }
-      const std::size_t j = nl.partner[k];
-      const Vec3 d = p.x[i] - p.x[j];
+      const std::uint32_t j = partner[k];
+      const Vec3 d = xi - x[j];
       const double d2 = d.squaredNorm();
-      const double rc = nl.contact_distance(p, i, j);
+      const double rj = radius[j];
+      const double rc = ri + rj + reach;  // nl.contact_distance
       const bool touch = !(d2 >= rc * rc);
       // A pair that just came apart: its spring goes (rarely true: predicted).
-      if (!touch & (nl.may_touch[k] != 0)) std::fill_n(nl.history.data() + static_cast<std::size_t>(k) * 3, 3, 0.0);
-      nl.may_touch[k] = touch;
-      const int l = b.count;
-      b.dx[l] = d.x(), b.dy[l] = d.y(), b.dz[l] = d.z(), b.d2[l] = d2;
-      b.ri[l] = p.radius[i], b.rj[l] = p.radius[j];
-      row_of[l] = static_cast<std::uint32_t>(i), entry_of[l] = k;
+      if (!touch & (may_touch[k] != 0)) std::fill_n(history + static_cast<std::size_t>(k) * 3, 3, 0.0);
+      may_touch[k] = touch;
+      b.dx[n] = d.x(), b.dy[n] = d.y(), b.dz[n] = d.z(), b.d2[n] = d2;
+      b.ri[n] = ri, b.rj[n] = rj;
+      row_of[n] = static_cast<std::uint32_t>(i), entry_of[n] = k, partner_of[n] = j;
       if constexpr (Prefetch) {  // (for every entry: a branch on touch would be mispredicted)
-        __builtin_prefetch(&p.v[j]);
-        __builtin_prefetch(&p.omega[j]);
-        __builtin_prefetch(&p.mass[j]);
-        __builtin_prefetch(&p.f[j], 1);
-        __builtin_prefetch(&p.torque[j], 1);
+        __builtin_prefetch(&v[j]);
+        __builtin_prefetch(&w[j]);
+        __builtin_prefetch(&mass[j]);
+        __builtin_prefetch(&f[j], 1);
+        __builtin_prefetch(&torque[j], 1);
       }
-      b.count += touch;
-      if (b.count == SphereContactBatch::kSize) flush();
+      n += touch;
+      if (n == kSize) flush();
     }
+  }
   flush();
 }
 
@@ -115,13 +168,14 @@ void run_lanes(Scene& s, SphereContactBatch& batch, EntryForces& e) {
   const NeighborList& nl = s.neighbors;
   const std::size_t rows = nl.row_start.empty() ? 0 : nl.row_start.size() - 1;
   if constexpr (!Deferred) {
-    auto add = [&](int l, std::size_t i, std::uint32_t k, const SphereContactBatch& b) {
-      const std::size_t j = nl.partner[k];
+    Vec3* const force = p.f.data();
+    Vec3* const torque = p.torque.data();
+    auto add = [force, torque](int l, std::size_t i, std::size_t j, std::uint32_t, const SphereContactBatch& b) {
       const Vec3 f(b.fx[l], b.fy[l], b.fz[l]);
-      p.f[i] += f;
-      p.f[j] -= f;
-      p.torque[i] += Vec3(b.tix[l], b.tiy[l], b.tiz[l]);
-      p.torque[j] += Vec3(b.tjx[l], b.tjy[l], b.tjz[l]);
+      force[i] += f;
+      force[j] -= f;
+      torque[i] += Vec3(b.tix[l], b.tiy[l], b.tiz[l]);
+      torque[j] += Vec3(b.tjx[l], b.tjy[l], b.tjz[l]);
     };
     if (p.size() >= kPrefetchFrom)
       lanes_rows<true>(s, batch, 0, rows, add);
@@ -140,10 +194,13 @@ void run_lanes(Scene& s, SphereContactBatch& batch, EntryForces& e) {
         const auto lo = static_cast<std::size_t>(r0), hi = static_cast<std::size_t>(std::min(r0 + chunk, n_rows));
         for (std::size_t i = lo; i < hi; ++i)  // entries not touching stay zero
           for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) e.zero<true>(k);
-        auto put = [&](int l, std::size_t, std::uint32_t k, const SphereContactBatch& bb) {
-          e.f[k] = Vec3(bb.fx[l], bb.fy[l], bb.fz[l]);
-          e.ti[k] = Vec3(bb.tix[l], bb.tiy[l], bb.tiz[l]);
-          e.tj[k] = Vec3(bb.tjx[l], bb.tjy[l], bb.tjz[l]);
+        Vec3* const ef = e.f.data();
+        Vec3* const eti = e.ti.data();
+        Vec3* const etj = e.tj.data();
+        auto put = [ef, eti, etj](int l, std::size_t, std::size_t, std::uint32_t k, const SphereContactBatch& bb) {
+          ef[k] = Vec3(bb.fx[l], bb.fy[l], bb.fz[l]);
+          eti[k] = Vec3(bb.tix[l], bb.tiy[l], bb.tiz[l]);
+          etj[k] = Vec3(bb.tjx[l], bb.tjy[l], bb.tjz[l]);
         };
         if (prefetch)
           lanes_rows<true>(s, b, lo, hi, put);

@@ -3,8 +3,10 @@
 // of overlapping spheres of two materials with random motion and random
 // springs, some of them sliding, over several steps, serial and with the
 // ordered (deterministic) sums, in clusters small and large (the lanes
-// prefetch in large ones). Forces, torques and springs must agree to the
-// bit, batch boundaries and padded lanes included.
+// prefetch in large ones); also with one material (its constants written
+// once per batch) and with frozen grains (m* is the other grain's mass).
+// Forces, torques and springs must agree to the bit, batch boundaries and
+// padded lanes included.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -18,7 +20,9 @@ namespace {
 
 using HertzMindlin = ContactLaw<HertzNormal, SpringTangential, NoRolling, NoCohesion>;
 
-Scene cluster(int n, std::uint64_t seed, bool deterministic) {
+enum class Kind { TwoMaterials, OneMaterial, Frozen };
+
+Scene cluster(int n, std::uint64_t seed, bool deterministic, Kind kind = Kind::TwoMaterials) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1);
   Scene s;
@@ -34,6 +38,7 @@ Scene cluster(int n, std::uint64_t seed, bool deterministic) {
   s.materials[1].youngs_modulus = 4e7;
   s.materials[1].poisson_ratio = 0.2;
   s.materials[1].friction = 0.2;
+  if (kind == Kind::OneMaterial) s.materials.pop_back();
   s.pairs = PairTable(s.materials, {}, NormalLawChoice{"hertz", {}});
   s.particles.configure(FieldSet(Field::AngularVelocity) | Field::Torque | Field::Inertia, 0);
   // Random centres at about one sphere volume per sphere: most neighbours
@@ -42,9 +47,12 @@ Scene cluster(int n, std::uint64_t seed, bool deterministic) {
   for (int k = 0; k < n; ++k) {
     const double r = 0.005 * (1 + 0.3 * std::abs(u(rng)));
     const auto i = s.particles.add(k, side * Vec3(u(rng), u(rng), u(rng)), Vec3(u(rng), u(rng), u(rng)), r,
-                                   2500 * 4.0 / 3.0 * M_PI * r * r * r, k % 2);
+                                   2500 * 4.0 / 3.0 * M_PI * r * r * r,
+                                   kind == Kind::OneMaterial ? 0 : k % 2);
     s.particles.omega[i] = 100 * Vec3(u(rng), u(rng), u(rng));
+    if (kind == Kind::Frozen && k % 5 == 0) s.particles.inv_mass[i] = 0;
   }
+  s.neighbors.set_frozen(kind == Kind::Frozen);
   s.clock.dt = 1e-6;
   s.deterministic = deterministic;
   s.neighbors.set_gather(deterministic);
@@ -63,10 +71,10 @@ Scene cluster(int n, std::uint64_t seed, bool deterministic) {
   return s;
 }
 
-void compare(bool deterministic) {
+void compare(bool deterministic, Kind kind = Kind::TwoMaterials) {
   // 40000 grains: past the size from which the lanes prefetch the partners.
   for (int n : {3, 40, 300, 40000}) {
-    Scene a = cluster(n, 7 + n, deterministic), b = cluster(n, 7 + n, deterministic);
+    Scene a = cluster(n, 7 + n, deterministic, kind), b = cluster(n, 7 + n, deterministic, kind);
     // The lanes stage as the environment chooses (GRAINS_SIMD=baseline: the
     // baseline copy, see CMakeLists.txt), the scalar one by GRAINS_SIMD=scalar.
     const char* env = std::getenv("GRAINS_SIMD");
@@ -107,6 +115,14 @@ void compare(bool deterministic) {
 
 TEST(SphereLanes, SerialSumsEqualTheScalarLoopBitwise) { compare(false); }
 TEST(SphereLanes, OrderedSumsEqualTheScalarLoopBitwise) { compare(true); }
+TEST(SphereLanes, OneMaterialEqualsTheScalarLoopBitwise) {
+  compare(false, Kind::OneMaterial);
+  compare(true, Kind::OneMaterial);
+}
+TEST(SphereLanes, FrozenGrainsEqualTheScalarLoopBitwise) {
+  compare(false, Kind::Frozen);
+  compare(true, Kind::Frozen);
+}
 
 TEST(SphereLanes, SomeSpringsSlide) {
   // The comparison above must cover the Coulomb branch: with springs this
