@@ -27,9 +27,18 @@
 #endif
 
 // Everything below is compiled once per instruction set (pw85_lanes.cpp
-// baseline, pw85_lanes_avx2.cpp with AVX2), so it lives in a namespace named
-// after it: the two copies never meet at link time.
-#if defined(__AVX__)
+// baseline, pw85_lanes_avx2.cpp with AVX2; the sphere kernel also with
+// AVX-512, sphere_lanes_avx512.cpp), so it lives in a namespace named after
+// it: the copies never meet at link time. Eight lanes of AVX-512 only where a
+// file asks for them (defining GRAINS_LANES_512_WANTED; a -march=native build keeps four).
+#if defined(__AVX512F__) && defined(GRAINS_LANES_512_WANTED)
+#define GRAINS_LANES_512 1
+#else
+#define GRAINS_LANES_512 0
+#endif
+#if GRAINS_LANES_512
+#define GRAINS_LANES_ISA isa_avx512
+#elif defined(__AVX__)
 #define GRAINS_LANES_ISA isa_avx
 #else
 #define GRAINS_LANES_ISA isa_base
@@ -38,12 +47,18 @@
 namespace grains::contact {
 inline namespace GRAINS_LANES_ISA {
 
-inline constexpr int kLanes = 4;
-
 // The lanes are held as GCC/Clang vector types of kPack doubles (two with
-// SSE2, the x86-64 baseline; four with AVX), so every operator below is
+// SSE2, the x86-64 baseline; four with AVX; eight with AVX-512, where a
+// lane group is one instruction of eight), so every operator below is
 // kLanes / kPack packed instructions whatever the optimiser decides.
-#if defined(__AVX__)
+#if GRAINS_LANES_512
+inline constexpr int kLanes = 8;
+#else
+inline constexpr int kLanes = 4;
+#endif
+#if GRAINS_LANES_512
+inline constexpr int kPack = 8;
+#elif defined(__AVX__)
 inline constexpr int kPack = 4;
 #else
 inline constexpr int kPack = 2;
@@ -104,7 +119,9 @@ GRAINS_INLINE Lanes select(const LaneMask& m, const Lanes& a, const Lanes& b) {
 GRAINS_INLINE Lanes sqrt_(const Lanes& a) {
   Lanes r;
   for (int i = 0; i < kPacks; ++i)
-#if defined(__AVX__)
+#if GRAINS_LANES_512
+    r.p[i] = (PackD)_mm512_maskz_sqrt_pd((__mmask8)-1, (__m512d)a.p[i]);  // (maskz: GCC 12 warns on _mm512_sqrt_pd)
+#elif defined(__AVX__)
     r.p[i] = (PackD)_mm256_sqrt_pd((__m256d)a.p[i]);
 #elif defined(__SSE2__)
     r.p[i] = (PackD)_mm_sqrt_pd((__m128d)a.p[i]);
@@ -133,7 +150,9 @@ template <class F>
 GRAINS_INLINE Lanes gather_lanes(F&& f) {
   Lanes r;
   for (int i = 0; i < kPacks; ++i) {
-#if defined(__AVX__)
+#if GRAINS_LANES_512
+    r.p[i] = PackD{f(8 * i), f(8 * i + 1), f(8 * i + 2), f(8 * i + 3), f(8 * i + 4), f(8 * i + 5), f(8 * i + 6), f(8 * i + 7)};
+#elif defined(__AVX__)
     r.p[i] = PackD{f(4 * i), f(4 * i + 1), f(4 * i + 2), f(4 * i + 3)};
 #else
     r.p[i] = PackD{f(2 * i), f(2 * i + 1)};

@@ -1,7 +1,8 @@
 // Hertz–Mindlin sphere contacts in lanes: see sphere_lanes.hpp. The
 // arithmetic (sphere_lanes.inc) is compiled for the baseline instruction set
-// here and with AVX2 in sphere_lanes_avx2.cpp; the copy is chosen once, at
-// run time, by the CPU (GRAINS_SIMD=baseline forces the baseline copy).
+// here, with AVX2 in sphere_lanes_avx2.cpp and with AVX-512 in
+// sphere_lanes_avx512.cpp; the copy is chosen once, at run time, by the CPU
+// (GRAINS_SIMD=baseline or =avx2 caps it).
 #include "sim/laws/sphere_lanes.inc"
 
 #include <cstdlib>
@@ -12,6 +13,9 @@ namespace grains::sim {
 namespace isa_avx {
 void hertz_mindlin_lanes_isa(SphereContactBatch&);
 }  // namespace isa_avx
+namespace isa_avx512 {
+void hertz_mindlin_lanes_isa(SphereContactBatch&);
+}  // namespace isa_avx512
 #endif
 
 namespace {
@@ -28,6 +32,8 @@ const LaneCopy& lane_copy() {
     const char* env = std::getenv("GRAINS_SIMD");
     if (env && std::strcmp(env, "baseline") == 0) return baseline;
     __builtin_cpu_init();
+    const bool cap_avx2 = env && std::strcmp(env, "avx2") == 0;
+    if (!cap_avx2 && __builtin_cpu_supports("avx512f")) return {"avx512", isa_avx512::hertz_mindlin_lanes_isa};
     if (__builtin_cpu_supports("avx2")) return {"avx2", isa_avx::hertz_mindlin_lanes_isa};
 #endif
     return baseline;

@@ -9,7 +9,8 @@
 // pairs of the list into a batch, structure of arrays, and this kernel
 // computes the batch in lockstep lanes (contact/ellipsoid/lanes.hpp: two
 // doubles per SSE2 instruction in the baseline copy, four per AVX instruction
-// in the AVX2 copy chosen at run time). The stage then adds the forces to the
+// in the AVX2 copy, eight per instruction in the AVX-512 copy, chosen at run
+// time). The stage then adds the forces to the
 // particles in list order, as the scalar loop does.
 //
 // Every lane does the IEEE operations of the scalar law (normal_hertz.hpp,
@@ -22,10 +23,11 @@
 namespace grains::sim {
 
 /// A batch of touching sphere pairs: inputs, and the outputs the kernel
-/// writes. Lanes past `count` up to a multiple of 4 must hold a finite
+/// writes. Lanes past `count` up to a multiple of kPad must hold a finite
 /// contact (the stage repeats the last one there); their outputs are unused.
 struct SphereContactBatch {
-  static constexpr int kSize = 32;  // a multiple of the lane count
+  static constexpr int kSize = 32;  // a multiple of kPad
+  static constexpr int kPad = 8;    // a multiple of every copy's lane count (AVX-512: 8)
   int count = 0;
   double dt = 0;
   // Geometry: d = x_i - x_j, |d|^2; the radii.
@@ -48,7 +50,7 @@ void hertz_mindlin_lanes(SphereContactBatch& b);
 /// False when GRAINS_SIMD=scalar asks the force stages for the scalar loop
 /// (read when a stage is made: for comparisons of the two).
 bool sphere_lanes_enabled();
-/// The instruction set of the copy in use ("baseline", "avx2"; GRAINS_SIMD=baseline forces the baseline).
+/// The instruction set of the copy in use ("baseline", "avx2", "avx512"; GRAINS_SIMD=baseline or =avx2 caps it).
 const char* sphere_lanes_instruction_set();
 
 }  // namespace grains::sim

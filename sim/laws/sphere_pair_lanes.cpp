@@ -101,7 +101,7 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
     else
       for (int l = 0; l < n; ++l) b.m[l] = mi[l] * mj[l] / (mi[l] + mj[l]);
     b.count = n;
-    for (int l = n; l % 4 != 0; ++l) copy_lane(b, n - 1, l);  // padding: a finite contact
+    for (int l = n; l % SphereContactBatch::kPad != 0; ++l) copy_lane(b, n - 1, l);  // padding: a finite contact
     hertz_mindlin_lanes(b);
     for (int l = 0; l < n; ++l) {
       double* h = history + static_cast<std::size_t>(entry_of[l]) * 3;

@@ -1,0 +1,9 @@
+// The lockstep Hertz–Mindlin arithmetic (sphere_lanes.inc) compiled with
+// AVX-512 (eight lanes per instruction: half the square-root and division
+// instructions of the AVX2 copy per contact), without FMA contraction so that
+// it gives the scalar law's bits; chosen at run time by sphere_lanes.cpp.
+#if !defined(__AVX512F__)
+#error "sphere_lanes_avx512.cpp must be compiled with -mavx512f"
+#endif
+#define GRAINS_LANES_512_WANTED 1
+#include "sim/laws/sphere_lanes.inc"
