@@ -10,7 +10,7 @@
 #include "sim/laws/contact_law.hpp"
 #include "sim/laws/entry_forces.hpp"
 #include "sim/laws/probe_entries.hpp"
-#include "sim/laws/sphere_pair_lanes.hpp"
+#include "sim/laws/sphere_lanes_stage.hpp"
 #include "sim/scene/stage.hpp"
 
 namespace grains::sim {
@@ -43,7 +43,7 @@ class PairContactStage final : public Stage {
   // Hertz–Mindlin with its spring and nothing else, the common dry law, runs
   // its touching pairs in lockstep lanes (sphere_lanes.hpp), bitwise as the
   // scalar law: every pair of the list as contact() below, batched
-  // (sphere_pair_lanes.cpp).
+  // (sphere_lanes_stage.cpp).
   static constexpr bool kLanes = std::is_same_v<Law, ContactLaw<HertzNormal, SpringTangential, NoRolling, NoCohesion>>;
   // The contact of list entry k (row i): false when the pair does not touch.
   static GRAINS_INLINE bool contact(Scene& s, std::size_t i, std::uint32_t k, Vec3& force, Vec3& ti, Vec3& tj) {

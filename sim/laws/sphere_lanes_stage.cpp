@@ -1,6 +1,6 @@
 // The Hertz–Mindlin force loop of sphere pairs in lanes: see
-// sphere_pair_lanes.hpp.
-#include "sim/laws/sphere_pair_lanes.hpp"
+// sphere_lanes_stage.hpp.
+#include "sim/laws/sphere_lanes_stage.hpp"
 
 #include <algorithm>
 
