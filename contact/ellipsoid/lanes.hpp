@@ -151,7 +151,8 @@ GRAINS_INLINE Lanes gather_lanes(F&& f) {
   Lanes r;
   for (int i = 0; i < kPacks; ++i) {
 #if GRAINS_LANES_512
-    r.p[i] = PackD{f(8 * i), f(8 * i + 1), f(8 * i + 2), f(8 * i + 3), f(8 * i + 4), f(8 * i + 5), f(8 * i + 6), f(8 * i + 7)};
+    r.p[i] = PackD{f(8 * i),     f(8 * i + 1), f(8 * i + 2), f(8 * i + 3),
+                   f(8 * i + 4), f(8 * i + 5), f(8 * i + 6), f(8 * i + 7)};
 #elif defined(__AVX__)
     r.p[i] = PackD{f(4 * i), f(4 * i + 1), f(4 * i + 2), f(4 * i + 3)};
 #else

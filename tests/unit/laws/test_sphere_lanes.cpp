@@ -47,8 +47,7 @@ Scene cluster(int n, std::uint64_t seed, bool deterministic, Kind kind = Kind::T
   for (int k = 0; k < n; ++k) {
     const double r = 0.005 * (1 + 0.3 * std::abs(u(rng)));
     const auto i = s.particles.add(k, side * Vec3(u(rng), u(rng), u(rng)), Vec3(u(rng), u(rng), u(rng)), r,
-                                   2500 * 4.0 / 3.0 * M_PI * r * r * r,
-                                   kind == Kind::OneMaterial ? 0 : k % 2);
+                                   2500 * 4.0 / 3.0 * M_PI * r * r * r, kind == Kind::OneMaterial ? 0 : k % 2);
     s.particles.omega[i] = 100 * Vec3(u(rng), u(rng), u(rng));
     if (kind == Kind::Frozen && k % 5 == 0) s.particles.inv_mass[i] = 0;
   }
