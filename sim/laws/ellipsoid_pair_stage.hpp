@@ -14,9 +14,9 @@
 
 #include "contact/ellipsoid/pw85_lanes.hpp"
 #include "sim/laws/contact_law.hpp"
-#include "sim/neighbor/pair_geometry.hpp"
 #include "sim/laws/entry_forces.hpp"
 #include "sim/laws/probe_entries.hpp"
+#include "sim/neighbor/pair_geometry.hpp"
 #include "sim/scene/stage.hpp"
 
 namespace grains::sim {
@@ -110,7 +110,7 @@ class ShapePairContactStage final : public Stage {
         const Vec3 r = p.x[j] - p.x[i];
         const double r2 = r.squaredNorm();
         const double rc = nl.contact_distance(p, i, j);
-        if (r2 >= rc * rc) {  // bounding spheres apart
+        if (r2 >= rc * rc) {      // bounding spheres apart
           if (hist[H] != -1.0) {  // (most such entries were cleared at an earlier step)
             std::fill_n(hist, NH, 0.0);
             hist[H] = -1.0;
@@ -149,8 +149,8 @@ class ShapePairContactStage final : public Stage {
       if (pw.status == contact::Pw85Status::ok && pw.mu2 < 1.0) {
         const std::size_t j = nl.partner[k];
         b.touching[touching] = static_cast<std::uint32_t>(m);
-        b.geometry_jobs[touching++] = {p.x[i].data(), p.form[i].data(), p.x[j].data(), p.form[j].data(),
-                                       {pw.x[0], pw.x[1], pw.x[2]}};
+        b.geometry_jobs[touching++] = {
+            p.x[i].data(), p.form[i].data(), p.x[j].data(), p.form[j].data(), {pw.x[0], pw.x[1], pw.x[2]}};
         continue;
       }
       if constexpr (H > 0) std::fill_n(hist, H, 0.0);
@@ -204,14 +204,12 @@ class ShapePairContactStage final : public Stage {
       run_rows(
           s, r0, r1, batches_[static_cast<std::size_t>(omp_get_thread_num())],
           [&](std::size_t, std::uint32_t k, const Vec3& f, const Vec3& ti, const Vec3& tj) {
-            e_.f[k] = f;
-            e_.ti[k] = ti;
-            e_.tj[k] = tj;
+            e_.set<true>(k, f, ti, tj);
           },
-          [&](std::uint32_t k) { e_.zero<true>(k); });
+          [&](std::uint32_t k) { e_.zero<true>(k, k + 1); });
     }
     gather_entry_forces<true>(s.particles, nl, e_);
-    if (s.stress_probe) probe_entries(*s.stress_probe, s.particles, nl, e_.f);
+    if (s.stress_probe) probe_entries<true>(*s.stress_probe, s.particles, nl, e_);
   }
 
   EntryForces e_;

@@ -6,6 +6,8 @@
 // other particle's global id (NeighborList::gather_*). The sum therefore
 // does not depend on the thread count, the rank count or the local order
 // of particles, and there are no write races.
+#include <algorithm>
+#include <cstddef>
 #include <vector>
 
 #include "sim/neighbor/neighbor_list.hpp"
@@ -13,24 +15,42 @@
 
 namespace grains::sim {
 
+/// Per list entry k, what each of its two particles gets, in the layout the
+/// gather reads: side 0 (the row particle) holds (f, ti), side 1 (the
+/// partner) holds (-f, tj), side s of entry k at element (2k + s) * side
+/// size, which is NeighborList::gather_entry's code times the side size.
+/// The gather then adds whole sides, with no sign or choice per entry
+/// (a + (-f) is a - f to the bit). Without rotation a side is the force
+/// alone. An entry not in contact holds zeros.
 struct EntryForces {
-  std::vector<Vec3> f;       // force on the row particle (the partner gets -f)
-  std::vector<Vec3> ti, tj;  // torque on the row particle, on the partner
+  template <bool Rotation>
+  static constexpr std::size_t kSide = Rotation ? 6 : 3;
+  std::vector<double> v;
+
   template <bool Rotation>
   void resize(std::size_t entries) {
-    f.resize(entries);
-    if constexpr (Rotation) {
-      ti.resize(entries);
-      tj.resize(entries);
-    }
+    v.resize(entries * 2 * kSide<Rotation>);
   }
   template <bool Rotation>
-  void zero(std::size_t k) {
-    f[k].setZero();
-    if constexpr (Rotation) {
-      ti[k].setZero();
-      tj[k].setZero();
-    }
+  void set(std::size_t k, const Vec3& f, const Vec3& ti, const Vec3& tj) {
+    double* q = v.data() + k * 2 * kSide<Rotation>;
+    q[0] = f.x(), q[1] = f.y(), q[2] = f.z();
+    q += 3;
+    if constexpr (Rotation) q[0] = ti.x(), q[1] = ti.y(), q[2] = ti.z(), q += 3;
+    q[0] = -f.x(), q[1] = -f.y(), q[2] = -f.z();
+    if constexpr (Rotation) q[3] = tj.x(), q[4] = tj.y(), q[5] = tj.z();
+  }
+  /// Entries [k0, k1) not in contact (until set).
+  template <bool Rotation>
+  void zero(std::size_t k0, std::size_t k1) {
+    std::fill(v.begin() + static_cast<std::ptrdiff_t>(k0 * 2 * kSide<Rotation>),
+              v.begin() + static_cast<std::ptrdiff_t>(k1 * 2 * kSide<Rotation>), 0.0);
+  }
+  /// The force of entry k on its row particle.
+  template <bool Rotation>
+  Vec3 force(std::size_t k) const {
+    const double* q = v.data() + k * 2 * kSide<Rotation>;
+    return {q[0], q[1], q[2]};
   }
 };
 
@@ -38,23 +58,21 @@ struct EntryForces {
 /// list's gather order.
 template <bool Rotation>
 inline void gather_entry_forces(ParticleStore& p, const NeighborList& nl, const EntryForces& e) {
+  constexpr std::size_t S = EntryForces::kSide<Rotation>;
   const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
+  const double* const v = e.v.data();
+  const std::uint32_t* const gather_start = nl.gather_start.data();
+  const std::uint32_t* const gather_entry = nl.gather_entry.data();
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    Vec3 f = Vec3::Zero(), t = Vec3::Zero();
-    for (auto g = nl.gather_start[i]; g < nl.gather_start[i + 1]; ++g) {
-      const std::uint32_t code = nl.gather_entry[g], k = code >> 1;
-      if (code & 1u) {
-        f -= e.f[k];
-        if constexpr (Rotation) t += e.tj[k];
-      } else {
-        f += e.f[k];
-        if constexpr (Rotation) t += e.ti[k];
-      }
+    double a[S] = {};
+    for (auto g = gather_start[i]; g < gather_start[i + 1]; ++g) {
+      const double* const q = v + std::size_t{gather_entry[g]} * S;
+      for (std::size_t c = 0; c < S; ++c) a[c] += q[c];
     }
-    p.f[i] += f;
-    if constexpr (Rotation) p.torque[i] += t;
+    p.f[i] += Vec3(a[0], a[1], a[2]);
+    if constexpr (Rotation) p.torque[i] += Vec3(a[3], a[4], a[5]);
   }
 }
 

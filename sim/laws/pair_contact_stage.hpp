@@ -150,17 +150,16 @@ class PairContactStage final : public Stage {
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::ptrdiff_t ii = 0; ii < rows; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
-      Vec3 dummy;
       for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
-        if constexpr (Rot) {
-          if (!contact(s, i, k, e_.f[k], e_.ti[k], e_.tj[k])) e_.template zero<Rot>(k);
-        } else {
-          if (!contact(s, i, k, e_.f[k], dummy, dummy)) e_.template zero<Rot>(k);
-        }
+        Vec3 f, ti, tj;
+        if (contact(s, i, k, f, ti, tj))
+          e_.template set<Rot>(k, f, ti, tj);
+        else
+          e_.template zero<Rot>(k, k + 1);
       }
     }
     gather_entry_forces<Rot>(s.particles, nl, e_);
-    if (s.stress_probe) probe_entries(*s.stress_probe, s.particles, nl, e_.f);
+    if (s.stress_probe) probe_entries<Rot>(*s.stress_probe, s.particles, nl, e_);
   }
 
   EntryForces e_;

@@ -5,17 +5,20 @@
 // the steps the stress is measured.
 #include <vector>
 
+#include "sim/laws/entry_forces.hpp"
 #include "sim/neighbor/neighbor_list.hpp"
 #include "sim/state/stress_probe.hpp"
 
 namespace grains::sim {
 
-inline void probe_entries(StressProbe& probe, const ParticleStore& p, const NeighborList& nl,
-                          const std::vector<Vec3>& f) {
+template <bool Rotation>
+void probe_entries(StressProbe& probe, const ParticleStore& p, const NeighborList& nl, const EntryForces& e) {
   const std::size_t rows = nl.row_start.empty() ? 0 : nl.row_start.size() - 1;
   for (std::size_t i = 0; i < rows; ++i)
-    for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k)
-      if (f[k].squaredNorm() > 0) probe.add_pair(0, p, i, nl.partner[k], f[k]);
+    for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
+      const Vec3 f = e.force<Rotation>(k);
+      if (f.squaredNorm() > 0) probe.add_pair(0, p, i, nl.partner[k], f);
+    }
 }
 
 }  // namespace grains::sim
