@@ -17,6 +17,7 @@
 #include "io/output/mass_output.hpp"
 #include "io/output/wall_load_output.hpp"
 #include "io/output/progress.hpp"
+#include "sim/laws/sphere_lanes.hpp"
 #include "sim/neighbor/neighbor_stage.hpp"
 #include "sim/parallel/comm.hpp"
 #include "sim/parallel/exchange.hpp"
@@ -441,7 +442,11 @@ RunSummary Runner::finish() {
     << "  \"neighbor_pairs_per_step\": " << (steps_run > 0 ? pair_steps / steps_run : 0.0)
     << ",\n  \"frames\": " << r.frames << ",\n"
     << "  \"mpi_ranks\": " << comm.size() << ",\n  \"omp_threads\": " << omp_get_max_threads() << ",\n"
-    << "  \"deterministic\": " << (s.scene.deterministic ? "true" : "false") << ",\n";
+    << "  \"deterministic\": " << (s.scene.deterministic ? "true" : "false") << ",\n"
+    // Which copy of the sphere pair kernel ran (README: GRAINS_SIMD): benchmark
+    // figures from different machines say what they measured.
+    << "  \"sphere_pair_simd\": \""
+    << (sim::sphere_lanes_enabled() ? sim::sphere_lanes_instruction_set() : "scalar") << "\",\n";
   if (s.scene.exchange) {
     const auto& x = s.scene.exchange->stats();
     j << "  \"decomposition\": \"" << s.scene.exchange->decomposition().describe() << "\",\n"

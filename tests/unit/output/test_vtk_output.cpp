@@ -14,6 +14,7 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include "sim/laws/sphere_lanes.hpp"
 #include "tests/support/sim_helpers.hpp"
 
 namespace grains::test {
@@ -151,6 +152,10 @@ output: {every_steps: 40, progress: false, vtk: false}
   ASSERT_NE(setup, std::string::npos);
   EXPECT_GE(std::stod(j.substr(setup + setup_key.size())), 0.0);
   EXPECT_GT(number("scene"), 0.0);
+  // The copy of the sphere pair kernel that ran, by name.
+  const std::string simd = std::string("\"sphere_pair_simd\": \"") +
+                           (sim::sphere_lanes_enabled() ? sim::sphere_lanes_instruction_set() : "scalar") + "\"";
+  EXPECT_NE(j.find(simd), std::string::npos) << j;
 }
 
 TEST(VtkOutput, UnwritableFolderIsAClearError) {
