@@ -3,8 +3,6 @@
 // (sim/state/stress_probe.hpp), after a deferred force evaluation: entry k's
 // force on its row particle, zero for entries not in contact. Serial: only on
 // the steps the stress is measured.
-#include <vector>
-
 #include "sim/laws/entry_forces.hpp"
 #include "sim/neighbor/neighbor_list.hpp"
 #include "sim/state/stress_probe.hpp"

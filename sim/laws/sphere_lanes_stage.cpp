@@ -83,7 +83,7 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
       b.wix[l] = w[i].x(), b.wiy[l] = w[i].y(), b.wiz[l] = w[i].z();
       b.wjx[l] = w[j].x(), b.wjy[l] = w[j].y(), b.wjz[l] = w[j].z();
       if (frozen)
-        mi[l] = nl.pair_mass(p, i, j), mj[l] = 0;
+        b.m[l] = nl.pair_mass(p, i, j);
       else
         mi[l] = mass[i], mj[l] = mass[j];
       if (!one_material) {
@@ -94,11 +94,10 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
       const double* h = history + k * 3;
       b.hx[l] = h[0], b.hy[l] = h[1], b.hz[l] = h[2];
     }
-    // R* = ri rj / (ri + rj), m* = mi mj / (mi + mj): lane by lane, as the list's pair_radius and pair_mass.
+    // R* = ri rj / (ri + rj), m* = mi mj / (mi + mj) (with frozen grains the
+    // list's pair_mass, above): lane by lane, as the list's pair_radius and pair_mass.
     for (int l = 0; l < n; ++l) b.R[l] = b.ri[l] * b.rj[l] / (b.ri[l] + b.rj[l]);
-    if (frozen)
-      std::copy_n(mi, n, b.m);
-    else
+    if (!frozen)
       for (int l = 0; l < n; ++l) b.m[l] = mi[l] * mj[l] / (mi[l] + mj[l]);
     b.count = n;
     for (int l = n; l % SphereContactBatch::kPad != 0; ++l) copy_lane(b, n - 1, l);  // padding: a finite contact
