@@ -424,7 +424,7 @@ RunSummary Runner::finish() {
   const std::int64_t migrated = s.scene.exchange ? comm.sum(s.scene.exchange->stats().migrated) : 0;
   // Memory: what the scene holds, part by part, and the peak resident set
   // size, summed over the ranks (docs/memory.md).
-  auto parts = sim::memory_parts(s.scene);
+  auto parts = sim::memory_parts(s.scene, s.pipeline);
   double counted = 0;
   for (auto& part : parts) counted += (part.bytes = comm.sum(part.bytes));
   const double peak_rss = comm.sum(sim::resident_bytes(true));
@@ -568,11 +568,12 @@ std::string describe(const Simulation& s) {
       << "largest grains against a wall); the neighbour lists, wall near lists and ghosts reach that far\n";
   {
     const auto& m = sc.memory;
-    char buf[320];
+    char buf[400];
     std::snprintf(buf, sizeof buf,
                   "memory: about %.3g MiB for the %lld particles the case asks for (fields %.0f bytes each, exact; "
-                  "neighbour lists about %.0f bytes each in a dense bed at a rebuild, estimated; docs/memory.md)\n",
-                  m.total() / 1048576.0, static_cast<long long>(m.particles), m.field_bytes, m.list_bytes);
+                  "neighbour lists about %.0f bytes each in a dense bed at a rebuild%s, estimated; docs/memory.md)\n",
+                  m.total() / 1048576.0, static_cast<long long>(m.particles), m.field_bytes, m.list_bytes,
+                  sc.deterministic ? ", ordered force sums included" : "");
     o << buf;
   }
   o << "per-particle fields:";

@@ -43,6 +43,10 @@ class ShapePairContactStage final : public Stage {
       run_direct(s);
   }
 
+  std::vector<std::pair<std::string, double>> memory_parts() const override {
+    return {{"ordered_sums_entry_forces", e_.bytes()}};
+  }
+
  private:
   static constexpr int H = Law::history_size;
   static constexpr int NH = H + 1;  // + PW85 lambda

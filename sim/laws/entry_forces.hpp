@@ -46,6 +46,8 @@ struct EntryForces {
     std::fill(v.begin() + static_cast<std::ptrdiff_t>(k0 * 2 * kSide<Rotation>),
               v.begin() + static_cast<std::ptrdiff_t>(k1 * 2 * kSide<Rotation>), 0.0);
   }
+  /// Bytes held (summary.json: ordered_sums_entry_forces).
+  double bytes() const { return static_cast<double>(v.size() * sizeof(double)); }
   /// The force of entry k on its row particle.
   template <bool Rotation>
   Vec3 force(std::size_t k) const {

@@ -37,6 +37,10 @@ class PairContactStage final : public Stage {
       run_direct<false>(s);
   }
 
+  std::vector<std::pair<std::string, double>> memory_parts() const override {
+    return {{"ordered_sums_entry_forces", e_.bytes()}};
+  }
+
  private:
   static constexpr int H = Law::history_size;
   static constexpr bool Rot = Law::needs_rotation;

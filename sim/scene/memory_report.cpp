@@ -1,9 +1,11 @@
 #include "sim/scene/memory_report.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <type_traits>
 
 #include "sim/parallel/exchange.hpp"
+#include "sim/scene/stage.hpp"
 
 namespace grains::sim {
 
@@ -29,6 +31,21 @@ std::vector<MemoryPart> memory_parts(const Scene& s) {
   add("clump_bodies", bytes(c.id) + bytes(c.x) + bytes(c.v) + bytes(c.orientation) + bytes(c.angular_momentum) +
                           bytes(c.omega) + bytes(c.mass) + bytes(c.volume) + bytes(c.inertia) + bytes(c.members) +
                           bytes(c.force) + bytes(c.torque));
+  return out;
+}
+
+std::vector<MemoryPart> memory_parts(const Scene& s, const Pipeline& pipeline) {
+  std::vector<MemoryPart> out = memory_parts(s);
+  const std::size_t scene_parts = out.size();
+  for (const auto& stage : pipeline.stages())
+    for (auto& [name, b] : stage->memory_parts()) {
+      auto same = std::find_if(out.begin() + static_cast<std::ptrdiff_t>(scene_parts), out.end(),
+                               [&](const MemoryPart& m) { return m.name == name; });
+      if (same == out.end())
+        out.push_back({std::move(name), b});
+      else
+        same->bytes += b;
+    }
   return out;
 }
 

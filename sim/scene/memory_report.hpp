@@ -22,6 +22,11 @@ struct MemoryPart {
 /// may be zero), so that they can be summed part by part.
 std::vector<MemoryPart> memory_parts(const Scene& s);
 
+class Pipeline;
+/// The scene's parts and then those the pipeline's stages hold (Stage::
+/// memory_parts; stages' parts of the same name are summed).
+std::vector<MemoryPart> memory_parts(const Scene& s, const Pipeline& pipeline);
+
 /// The process's resident set size now (peak = false) or its peak (VmHWM),
 /// in bytes, from /proc/self/status; 0 where that is not available.
 double resident_bytes(bool peak);

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "sim/scene/scene.hpp"
@@ -68,6 +69,9 @@ class Stage {
   /// Extra figures for summary.json, as the members of a JSON object
   /// ("\"key\": value, ..."); empty when the stage has none.
   virtual std::string summary_json() const { return {}; }
+  /// Memory the stage itself holds, by part (summary.json's memory block):
+  /// e.g. the per-entry forces of ordered sums. Empty when it holds none.
+  virtual std::vector<std::pair<std::string, double>> memory_parts() const { return {}; }
 };
 
 class Pipeline {

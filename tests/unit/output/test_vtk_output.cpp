@@ -158,6 +158,44 @@ output: {every_steps: 40, progress: false, vtk: false}
   EXPECT_NE(j.find(simd), std::string::npos) << j;
 }
 
+// Ordered force sums (parallel.deterministic) hold each list entry's two
+// sides, force and torques, 96 bytes: the memory report counts them (with
+// the gather's order), and a run in list order holds none.
+TEST(Summary, MemoryCountsOrderedSums) {
+  auto run_json = [](bool deterministic) {
+    const std::string yaml = std::string(R"(
+domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.02]}
+gravity: [0, 0, -9.81]
+materials:
+  - {name: m, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3, friction: 0.3}
+particles:
+  - {material: m, radius: 0.0005, count: 200, placement: {type: random_fill, region: {min: [0, 0, 0], max: [0.01, 0.01, 0.02]}}}
+time: {dt_rayleigh: 0.2, end: 0.002}
+output: {every_steps: 40, progress: false, vtk: false}
+parallel: {deterministic: )") + (deterministic ? "true" : "false") + "}\n";
+    auto s = from_yaml(yaml);
+    const fs::path dir = fs::temp_directory_path() / "grains_test_summary_ordered_sums";
+    run_into(s, dir);
+    std::ifstream in(dir / "summary.json");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    fs::remove_all(dir);
+    return ss.str();
+  };
+  auto number = [](const std::string& j, const std::string& key) {
+    const auto at = j.find("\"" + key + "\": ");
+    return at == std::string::npos ? -1.0 : std::stod(j.substr(at + key.size() + 4));
+  };
+  const std::string ordered = run_json(true), plain = run_json(false);
+  const double partners = number(ordered, "neighbor_partners");  // 4 bytes per list entry
+  ASSERT_GT(partners, 0.0) << ordered;
+  EXPECT_DOUBLE_EQ(number(ordered, "ordered_sums_entry_forces"), partners / 4 * 96) << ordered;
+  EXPECT_GT(number(ordered, "neighbor_ordered_sums"), 0.0) << ordered;
+  EXPECT_EQ(number(plain, "ordered_sums_entry_forces"), -1.0) << plain;  // absent: none held
+  EXPECT_EQ(number(plain, "neighbor_ordered_sums"), -1.0) << plain;
+  EXPECT_GT(number(ordered, "counted_bytes_per_particle"), number(plain, "counted_bytes_per_particle") + 0.9 * partners / 4 * 96);
+}
+
 TEST(VtkOutput, UnwritableFolderIsAClearError) {
   const std::string yaml = R"(
 domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}
