@@ -242,6 +242,10 @@ void Exchange::build_ghosts(ParticleStore& p, double time) {
   const int me = comm_.rank();
   const Vec3 lo = dec_.lo(me), hi = dec_.hi(me);
   const std::size_t rec = p.record_bytes();
+  // A grain j is a partner of an owned grain i when |x_i - x_j| < r_i + r_j +
+  // skin (+ reach), and x_i lies in the slab (or within a clump's extent of
+  // it): j within cut_ - R + r_j of the face, R the largest radius, suffices.
+  const double R = opt_.largest_radius;
   int tag = 100;
   // With Lees–Edwards boundaries the gradient's images first, so that the
   // images displaced along the flow get their own images across the flow.
@@ -269,7 +273,8 @@ void Exchange::build_ghosts(ParticleStore& p, double time) {
       if (sw.dest >= 0)
         for (std::size_t i = 0; i < n_sel; ++i) {
           const double xd = p.x[i][d];
-          if (dir < 0 ? xd < lo[d] + cut_ : xd >= hi[d] - cut_) {
+          const double cut = R > 0 ? cut_ - R + std::min(p.radius[i], R) : cut_;
+          if (dir < 0 ? xd < lo[d] + cut : xd >= hi[d] - cut) {
             sw.send.push_back(static_cast<std::uint32_t>(i));
             p.pack(i, sbuf_);
           }

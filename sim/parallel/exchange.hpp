@@ -32,6 +32,11 @@ namespace grains::sim {
 struct ExchangeOptions {
   std::array<int, 3> dims{0, 0, 0};  // requested rank grid (0: choose)
   double balance_threshold = 1.1;    // rebalance when max/mean work per rank > this
+  /// The largest radius the cut-off was made for (0: every grain uses the
+  /// whole cut-off). A grain of radius r then goes to a neighbour within
+  /// cut-off - largest_radius + r of the face: no partner of it there lies
+  /// farther (wide size distributions: the small grains' ghosts are fewer).
+  double largest_radius = 0;
 };
 
 class Exchange {

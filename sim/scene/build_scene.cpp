@@ -451,6 +451,7 @@ void setup_parallel(Scene& s, const SceneConfig& c, double rmax) {
   opt.dims = c.parallel.dims;
   if (s.domain.shear.on()) opt.dims[s.domain.shear.flow] = 1;  // images displaced along the flow: one rank holds it
   opt.balance_threshold = c.parallel.balance_threshold;
+  opt.largest_radius = rmax * grow;  // the cut-off's 2 r_max: each grain's ghost goes as far as its own radius needs
   try {
     s.exchange = std::make_shared<Exchange>(comm, s.domain, cut, opt);
   } catch (const std::runtime_error& e) {

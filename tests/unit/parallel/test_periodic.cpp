@@ -4,6 +4,12 @@
 // a periodic box too small for its particles is refused.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <map>
+#include <set>
+#include <tuple>
+
+#include "sim/parallel/exchange.hpp"
 #include "tests/support/sim_helpers.hpp"
 
 namespace grains::test {
@@ -110,6 +116,71 @@ TEST(Periodic, BoxTooSmallIsRefused) {
   } catch (const sim::SetupError& e) {
     EXPECT_NE(std::string(e.what()).find("periodic box is too small along x"), std::string::npos) << e.what();
   }
+}
+
+// A wide size distribution: each grain's images reach r + r_max + skin from
+// the face, not 2 r_max + skin (the farthest a partner of it lies), so a
+// small grain has fewer of them; the list still holds every pair, through
+// the faces included, exactly as brute force over the periodic images.
+TEST(Periodic, SmallGrainsImagesReachOnlyAsFarAsTheirPairs) {
+  const double L = 0.015;
+  std::ostringstream o;
+  o << "domain: {min: [0, 0, 0], max: [" << L << ", " << L << ", 0.005], periodic: [true, true, false]}\n"
+    << "materials:\n" << material("m", 2500, 1e7, 0.3, 0.5, 0) << "particles:\n"
+    << "  - {material: m, radius: 0.002, count: 6, placement: {type: random_fill, region: {min: [0, 0, 0], max: ["
+    << L << ", " << L << ", 0.005]}}}\n"
+    << "  - {material: m, radius: 0.0002, count: 2500, placement: {type: random_fill, region: {min: [0, 0, 0], max: ["
+    << L << ", " << L << ", 0.005]}}}\n"
+    << "neighbor: {skin_per_grain: false}\n"
+    << "time: {dt_rayleigh: 0.2, end: 0.001}\n";
+  auto s = from_yaml(o.str());
+  auto& sc = s.scene;
+  s.pipeline.initialize(sc);
+  const auto& p = sc.particles;
+  const std::size_t n = p.n_owned();
+  ASSERT_EQ(n, 2506u);
+  ASSERT_TRUE(sc.exchange);
+  const double cut = sc.exchange->cutoff(), skin = sc.neighbors.skin(), R = 0.002;
+  EXPECT_NEAR(cut, 2 * R + skin, 1e-15);
+  // Images per grain: along x and y, each face within its reach, and the corners.
+  auto images = [&](std::size_t i, double c) {
+    int a[2];
+    for (int d = 0; d < 2; ++d) a[d] = (p.x[i][d] < c) + (p.x[i][d] >= L - c);
+    return static_cast<std::size_t>((1 + a[0]) * (1 + a[1]) - 1);
+  };
+  std::size_t own_reach = 0, whole_cut = 0;
+  for (std::size_t i = 0; i < n; ++i) own_reach += images(i, cut - R + p.radius[i]), whole_cut += images(i, cut);
+  EXPECT_EQ(p.n_ghost(), own_reach);
+  EXPECT_LT(static_cast<double>(own_reach), 0.7 * static_cast<double>(whole_cut));
+  // The list's entries as (owned or row id, other id, image shift) against brute force.
+  std::map<std::int64_t, std::size_t> at;
+  for (std::size_t i = 0; i < n; ++i) at[p.id[i]] = i;
+  auto shift = [&](std::size_t k, int d) { return static_cast<int>(std::lround((p.x[k][d] - p.x[at[p.id[k]]][d]) / L)); };
+  std::multiset<std::tuple<std::int64_t, std::int64_t, int, int>> got, want;
+  const auto& nl = sc.neighbors;
+  for (std::size_t r = 0; r + 1 < nl.row_start.size(); ++r)
+    for (auto k = nl.row_start[r]; k < nl.row_start[r + 1]; ++k) {
+      std::size_t a = r, b = nl.partner[k];
+      if (a >= n) std::swap(a, b);  // the owned one first
+      ASSERT_LT(a, n) << "a pair of two images";
+      if (b < n && p.id[a] > p.id[b]) std::swap(a, b);
+      got.insert({p.id[a], p.id[b], shift(b, 0), shift(b, 1)});
+    }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j)
+      for (int sx = -1; sx <= 1; ++sx)
+        for (int sy = -1; sy <= 1; ++sy) {
+          const bool image = sx != 0 || sy != 0;
+          if (!image && p.id[i] >= p.id[j]) continue;  // a pair inside the box: once
+          const sim::Vec3 xj = p.x[j] + sim::Vec3(sx * L, sy * L, 0);
+          if ((p.x[i] - xj).norm() < p.radius[i] + p.radius[j] + skin) want.insert({p.id[i], p.id[j], sx, sy});
+        }
+  EXPECT_EQ(got, want);
+  std::size_t through = 0, small_through = 0;  // pairs through the faces, of two small grains
+  for (const auto& [a, b, sx, sy] : want)
+    if (sx != 0 || sy != 0) ++through, small_through += p.radius[at[a]] < R && p.radius[at[b]] < R;
+  EXPECT_GT(through, 30u) << want.size();
+  EXPECT_GT(small_through, 10u) << want.size();
 }
 
 TEST(Periodic, CaseKeyErrors) {
