@@ -247,6 +247,28 @@ void Exchange::build_ghosts(ParticleStore& p, double time) {
   // it): j within cut_ - R + r_j of the face, R the largest radius, suffices.
   const double R = opt_.largest_radius;
   int tag = 100;
+  auto cut_of = [&](std::size_t i) { return R > 0 ? cut_ - R + std::min(p.radius[i], R) : cut_; };
+  // Room for the ghosts before they arrive, unless the fields kept enough
+  // from the last build: from the owned grains near each face with a
+  // neighbour (one near two faces also has an image at their edge).
+  if (p.room() < p.size() + stats_.ghosts + stats_.ghosts / 16) {
+    std::array<bool, 6> to{};
+    for (int d = 0; d < 3; ++d)
+      for (int s = 0; s < 2; ++s) {
+        bool w = false;
+        to[2 * d + s] = (dec_.dims()[d] > 1 || domain_.periodic[d]) && dec_.neighbor(me, d, s ? 1 : -1, w) >= 0;
+      }
+    std::size_t images = 0;
+    for (std::size_t i = 0; i < p.n_owned(); ++i) {
+      const double c = cut_of(i);
+      std::size_t k = 1;
+      for (int d = 0; d < 3; ++d)
+        k *= 1 + static_cast<std::size_t>(to[2 * d] && p.x[i][d] < lo[d] + c) +
+             static_cast<std::size_t>(to[2 * d + 1] && p.x[i][d] >= hi[d] - c);
+      images += k - 1;
+    }
+    p.reserve_more(images + images / 16);
+  }
   // With Lees–Edwards boundaries the gradient's images first, so that the
   // images displaced along the flow get their own images across the flow.
   std::array<int, 3> order{0, 1, 2};
@@ -273,7 +295,7 @@ void Exchange::build_ghosts(ParticleStore& p, double time) {
       if (sw.dest >= 0)
         for (std::size_t i = 0; i < n_sel; ++i) {
           const double xd = p.x[i][d];
-          const double cut = R > 0 ? cut_ - R + std::min(p.radius[i], R) : cut_;
+          const double cut = cut_of(i);
           if (dir < 0 ? xd < lo[d] + cut : xd >= hi[d] - cut) {
             sw.send.push_back(static_cast<std::uint32_t>(i));
             p.pack(i, sbuf_);

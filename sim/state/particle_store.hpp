@@ -82,6 +82,11 @@ class ParticleStore {
   /// Append a ghost copy of particle `src` of `from` shifted by `shift`.
   void add_ghost(const ParticleStore& from, std::size_t src, const Vec3& shift);
   void clear_ghosts();
+  /// Room in every field for `count` more particles (ghosts about to
+  /// arrive), so that they do not grow each field several times.
+  void reserve_more(std::size_t count);
+  /// Particles the fields have room for.
+  std::size_t room() const { return id.capacity(); }
   /// Remove owned particles whose flag is set (order of the rest is kept).
   void remove_if(const std::vector<char>& remove);
   /// Reorder owned particles: new index k takes old index order[k].
