@@ -22,6 +22,41 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A small bed poured on a floor, for the figures of summary.json; `extra`
+// adds case keys.
+std::string small_bed(const std::string& extra = "") {
+  return R"(
+domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.02]}
+gravity: [0, 0, -9.81]
+materials:
+  - {name: m, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3, friction: 0.3}
+particles:
+  - {material: m, radius: 0.0005, count: 200, placement: {type: random_fill, region: {min: [0, 0, 0], max: [0.01, 0.01, 0.02]}}}
+walls:
+  - {type: plane, point: [0, 0, 0], normal: [0, 0, 1], material: m}
+time: {dt_rayleigh: 0.2, end: 0.002}
+output: {every_steps: 40, progress: false, vtk: false}
+)" + extra;
+}
+
+// Runs the case in a folder of its own and returns its summary.json.
+std::string run_summary(const std::string& yaml, const std::string& folder) {
+  auto s = from_yaml(yaml);
+  const fs::path dir = fs::temp_directory_path() / folder;
+  run_into(s, dir);
+  std::ifstream in(dir / "summary.json");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  fs::remove_all(dir);
+  return ss.str();
+}
+
+// The number after "key": in the summary; -1 when the key is absent.
+double json_number(const std::string& j, const std::string& key) {
+  const auto at = j.find("\"" + key + "\": ");
+  return at == std::string::npos ? -1.0 : std::stod(j.substr(at + key.size() + 4));
+}
+
 TEST(VtkOutput, FramesAndSeriesReadBack) {
   const std::string yaml = R"(
 domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.02]}
@@ -109,29 +144,10 @@ output: {every_steps: 1000000, progress: false}
 // adding up to the counted total, and a peak resident size above it; and the
 // set-up times.
 TEST(Summary, MemoryPerParticleAndSetUpTimes) {
-  const std::string yaml = R"(
-domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.02]}
-gravity: [0, 0, -9.81]
-materials:
-  - {name: m, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3, friction: 0.3}
-particles:
-  - {material: m, radius: 0.0005, count: 200, placement: {type: random_fill, region: {min: [0, 0, 0], max: [0.01, 0.01, 0.02]}}}
-walls:
-  - {type: plane, point: [0, 0, 0], normal: [0, 0, 1], material: m}
-time: {dt_rayleigh: 0.2, end: 0.002}
-output: {every_steps: 40, progress: false, vtk: false}
-)";
-  auto s = from_yaml(yaml);
-  const fs::path dir = fs::temp_directory_path() / "grains_test_summary_memory";
-  run_into(s, dir);
-  std::ifstream in(dir / "summary.json");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string j = ss.str();
+  const std::string j = run_summary(small_bed(), "grains_test_summary_memory");
   auto number = [&](const std::string& key) {
-    const auto at = j.find("\"" + key + "\": ");
-    EXPECT_NE(at, std::string::npos) << key << " in " << j;
-    return at == std::string::npos ? -1.0 : std::stod(j.substr(at + key.size() + 4));
+    EXPECT_NE(j.find("\"" + key + "\": "), std::string::npos) << key << " in " << j;
+    return json_number(j, key);
   };
   EXPECT_EQ(number("field:position"), 24.0);
   EXPECT_EQ(number("field:velocity"), 24.0);
@@ -163,37 +179,17 @@ output: {every_steps: 40, progress: false, vtk: false}
 // the gather's order), and a run in list order holds none.
 TEST(Summary, MemoryCountsOrderedSums) {
   auto run_json = [](bool deterministic) {
-    const std::string yaml = std::string(R"(
-domain: {min: [0, 0, 0], max: [0.01, 0.01, 0.02]}
-gravity: [0, 0, -9.81]
-materials:
-  - {name: m, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3, friction: 0.3}
-particles:
-  - {material: m, radius: 0.0005, count: 200, placement: {type: random_fill, region: {min: [0, 0, 0], max: [0.01, 0.01, 0.02]}}}
-time: {dt_rayleigh: 0.2, end: 0.002}
-output: {every_steps: 40, progress: false, vtk: false}
-parallel: {deterministic: )") + (deterministic ? "true" : "false") + "}\n";
-    auto s = from_yaml(yaml);
-    const fs::path dir = fs::temp_directory_path() / "grains_test_summary_ordered_sums";
-    run_into(s, dir);
-    std::ifstream in(dir / "summary.json");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    fs::remove_all(dir);
-    return ss.str();
-  };
-  auto number = [](const std::string& j, const std::string& key) {
-    const auto at = j.find("\"" + key + "\": ");
-    return at == std::string::npos ? -1.0 : std::stod(j.substr(at + key.size() + 4));
+    return run_summary(small_bed(std::string("parallel: {deterministic: ") + (deterministic ? "true" : "false") + "}\n"),
+                       "grains_test_summary_ordered_sums");
   };
   const std::string ordered = run_json(true), plain = run_json(false);
-  const double partners = number(ordered, "neighbor_partners");  // 4 bytes per list entry
+  const double partners = json_number(ordered, "neighbor_partners");  // 4 bytes per list entry
   ASSERT_GT(partners, 0.0) << ordered;
-  EXPECT_DOUBLE_EQ(number(ordered, "ordered_sums_entry_forces"), partners / 4 * 96) << ordered;
-  EXPECT_GT(number(ordered, "neighbor_ordered_sums"), 0.0) << ordered;
-  EXPECT_EQ(number(plain, "ordered_sums_entry_forces"), -1.0) << plain;  // absent: none held
-  EXPECT_EQ(number(plain, "neighbor_ordered_sums"), -1.0) << plain;
-  EXPECT_GT(number(ordered, "counted_bytes_per_particle"), number(plain, "counted_bytes_per_particle") + 0.9 * partners / 4 * 96);
+  EXPECT_DOUBLE_EQ(json_number(ordered, "ordered_sums_entry_forces"), partners / 4 * 96) << ordered;
+  EXPECT_GT(json_number(ordered, "neighbor_ordered_sums"), 0.0) << ordered;
+  EXPECT_EQ(json_number(plain, "ordered_sums_entry_forces"), -1.0) << plain;  // absent: none held
+  EXPECT_EQ(json_number(plain, "neighbor_ordered_sums"), -1.0) << plain;
+  EXPECT_GT(json_number(ordered, "counted_bytes_per_particle"), json_number(plain, "counted_bytes_per_particle") + 0.9 * partners / 4 * 96);
 }
 
 TEST(VtkOutput, UnwritableFolderIsAClearError) {
