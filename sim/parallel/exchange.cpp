@@ -248,10 +248,12 @@ void Exchange::build_ghosts(ParticleStore& p, double time) {
   const double R = opt_.largest_radius;
   int tag = 100;
   auto cut_of = [&](std::size_t i) { return R > 0 ? cut_ - R + std::min(p.radius[i], R) : cut_; };
-  // Room for the ghosts before they arrive, unless the fields kept enough
-  // from the last build: from the owned grains near each face with a
-  // neighbour (one near two faces also has an image at their edge).
-  if (p.room() < p.size() + stats_.ghosts + stats_.ghosts / 16) {
+  // Room for the ghosts before they arrive, at the first build and whenever
+  // the fields did not keep enough from the last: from the owned grains
+  // near each face with a neighbour (one near two faces also has an image
+  // at their edge).
+  if (!ghosts_sized_ || p.room() < p.size() + stats_.ghosts + stats_.ghosts / 16) {
+    ghosts_sized_ = true;
     std::array<bool, 6> to{};
     for (int d = 0; d < 3; ++d)
       for (int s = 0; s < 2; ++s) {

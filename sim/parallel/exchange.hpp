@@ -116,6 +116,7 @@ class Exchange {
   Domain domain_;
   Decomposition dec_;
   double cut_;
+  bool ghosts_sized_ = false;  // build_ghosts has reserved room for the ghosts once
   ExchangeOptions opt_;
   bool keep_cuts_once_ = false;  // the next migrate() does not rebalance (restored cuts)
   std::vector<Swap> swaps_;
