@@ -18,6 +18,10 @@
 
 namespace grains::sim {
 
+/// The mmap threshold io/run/allocator.cpp sets: blocks this large come from
+/// the kernel, faulted in page by page when first written.
+inline constexpr unsigned long kMappedBlockBytes = 4ul << 20;
+
 inline void release_free_heap() {
 #if defined(__GLIBC__)
   malloc_trim(0);

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "sim/state/free_heap.hpp"
+
 namespace grains::sim {
 
 namespace {
@@ -74,27 +76,39 @@ void ParticleStore::remove_if(const std::vector<char>& remove) {
 
 void ParticleStore::permute(const std::vector<std::size_t>& order) {
   clear_ghosts();
-  // Each field is gathered into one scratch block and copied back: the
-  // fields keep their blocks (and their room for ghosts), and one block is
-  // mapped per permutation instead of a new one per field. A block from the
-  // kernel (arrays of 4 MiB and more: io/run/allocator.hpp) is faulted in
-  // page by page when first written: for every field at every build before.
   std::size_t most = 0;  // the largest field, in bytes
   for_each_field([&](auto& vec, int w) {
     using T = typename std::decay_t<decltype(vec)>::value_type;
     static_assert(alignof(T) <= alignof(Quat) && std::is_trivially_destructible_v<T>);
     most = std::max(most, order.size() * static_cast<std::size_t>(w) * sizeof(T));
   });
-  std::vector<Quat> scratch((most + sizeof(Quat) - 1) / sizeof(Quat));  // storage aligned for every field's type
-  for_each_field([&](auto& vec, int w) {
-    using T = typename std::decay_t<decltype(vec)>::value_type;
-    T* const out = reinterpret_cast<T*>(scratch.data());
-    const std::size_t m = order.size() * static_cast<std::size_t>(w);
-    for (std::size_t k = 0; k < order.size(); ++k)
-      for (int c = 0; c < w; ++c) out[k * w + c] = vec[order[k] * w + c];
-    vec.resize(m);
-    std::copy(out, out + m, vec.begin());
-  });
+  if (most < kMappedBlockBytes) {
+    // Small fields: each into a new block from the heap, which reuses the
+    // block the field before gave back (no copy back).
+    for_each_field([&order](auto& vec, int w) {
+      using V = std::decay_t<decltype(vec)>;
+      V out;  // the field's room is kept (after a build, the room its ghosts took)
+      out.reserve(std::max(order.size() * static_cast<std::size_t>(w), vec.capacity()));
+      out.resize(order.size() * static_cast<std::size_t>(w));
+      for (std::size_t k = 0; k < order.size(); ++k)
+        for (int c = 0; c < w; ++c) out[k * w + c] = vec[order[k] * w + c];
+      vec.swap(out);
+    });
+  } else {
+    // Large fields: each gathered into one scratch block and copied back.
+    // The fields keep their blocks (and their room for ghosts), and one block
+    // is faulted in per permutation instead of a new one per field.
+    std::vector<Quat> scratch((most + sizeof(Quat) - 1) / sizeof(Quat));  // aligned for every field's type
+    for_each_field([&](auto& vec, int w) {
+      using T = typename std::decay_t<decltype(vec)>::value_type;
+      T* const out = reinterpret_cast<T*>(scratch.data());
+      const std::size_t m = order.size() * static_cast<std::size_t>(w);
+      for (std::size_t k = 0; k < order.size(); ++k)
+        for (int c = 0; c < w; ++c) out[k * w + c] = vec[order[k] * w + c];
+      vec.resize(m);
+      std::copy(out, out + m, vec.begin());
+    });
+  }
   n_owned_ = order.size();
 }
 
