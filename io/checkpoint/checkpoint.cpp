@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
@@ -343,6 +344,17 @@ void check_format(const h5::File& f) {
 
 std::size_t particle_count(const h5::File& f) { return std::stoull(f.read_attribute("/particles", "count")); }
 
+// Fields a checkpoint may lack because its stage ran without the effect
+// that keeps them (frictionless spheres: no rotation state, no wall
+// history), while the continuing case has it: they start as a new
+// particle's, which is the exact state then (a frictionless sphere neither
+// spins nor stretches a tangential spring; a sphere's inertia follows from
+// its mass and radius).
+bool may_start_fresh(const std::string& name) {
+  return name == "angular_velocity" || name == "torque" || name == "inertia" || name == "wall_history" ||
+         name == "wall_contact_normal";
+}
+
 void read_particles(const h5::File& f, sim::ParticleStore& p) {
   const std::size_t n = particle_count(f);
   // Resize through the public interface: empty the store, then add n
@@ -352,12 +364,28 @@ void read_particles(const h5::File& f, sim::ParticleStore& p) {
   std::vector<std::string> seen;
   p.visit_fields([&](const char* name, const char*, auto& vec, int width) {
     const std::string ds = std::string("/particles/") + name;
-    if (!f.exists(ds))
-      throw CheckpointError(f.path() + ": has no particle field '" + name +
-                            "', which this case needs: the checkpoint was written for a different case");
+    if (!f.exists(ds)) return;  // check_compatible allowed it to start fresh
     f.read_vector(ds, vec, n, width);
     seen.emplace_back(name);
   });
+  std::vector<std::string> fresh;
+  p.declare_fields([&](const sim::ParticleStore::FieldInfo& fi, auto member, auto make) {
+    if (std::find(seen.begin(), seen.end(), fi.name) != seen.end()) return;
+    auto& vec = p.*member;
+    const auto w = static_cast<std::size_t>(fi.width);
+    for (std::size_t i = 0; i < n; ++i) {
+      const sim::ParticleStore::NewParticle q{p.id[i], p.x[i], p.v[i], p.radius[i], p.mass[i], p.material[i], p.shape[i]};
+      const auto value = make(q);
+      for (std::size_t c = 0; c < w; ++c) vec[i * w + c] = value;
+    }
+    fresh.emplace_back(fi.name);
+  });
+  if (!fresh.empty()) {
+    std::string list;
+    for (const auto& name : fresh) list += (list.empty() ? "" : ", ") + name;
+    std::fprintf(stderr, "grains: restart: %s has no %s (its stage ran without them): they start as a new particle's\n",
+                 f.path().c_str(), list.c_str());
+  }
   for (const auto& c : f.children("/particles"))
     if (std::find(seen.begin(), seen.end(), c) == seen.end())
       throw CheckpointError(f.path() + ": has particle field '" + c +
@@ -391,9 +419,13 @@ void read_neighbors(const h5::File& f, sim::Scene& s) {
   f.read_vector("/neighbor/row_start", nl.row_start, f.shape("/neighbor/row_start").first, 1);
   const std::size_t m = f.shape("/neighbor/partner").first;
   f.read_vector("/neighbor/partner", nl.partner, m, 1);
-  nl.history.resize(m * static_cast<std::size_t>(H));
-  f.read_raw("/neighbor/history", H5T_NATIVE_DOUBLE, nl.history.data(), H > 0 ? m : 0,
-             static_cast<std::size_t>(std::max(H, 1)));
+  if (f.read_scalar<std::int32_t>("/neighbor/history_size") == 0) {
+    nl.history.assign(m * static_cast<std::size_t>(H), 0.0);  // none kept: every contact starts afresh
+  } else {
+    nl.history.resize(m * static_cast<std::size_t>(H));
+    f.read_raw("/neighbor/history", H5T_NATIVE_DOUBLE, nl.history.data(), H > 0 ? m : 0,
+               static_cast<std::size_t>(std::max(H, 1)));
+  }
   bool ok = nl.row_start.size() == n + 1 && nl.row_start.front() == 0 && nl.row_start.back() == m;
   for (std::size_t i = 0; ok && i < n; ++i) ok = nl.row_start[i] <= nl.row_start[i + 1];
   for (std::size_t k = 0; ok && k < m; ++k) ok = nl.partner[k] < n;
@@ -551,7 +583,10 @@ void check_compatible(const h5::File& f, sim::Scene& s) {
     throw CheckpointError(file + ": written at step " + std::to_string(step) + ", after the case's end (" +
                           std::to_string(s.clock.n_steps) + " steps); raise time.end to continue from it");
   const int H = f.read_scalar<std::int32_t>("/neighbor/history_size");
-  if (H != s.neighbors.history_size())
+  // A stage without any history-keeping law (frictionless grains, say) may be
+  // continued by one with such laws: its contacts then start with zero
+  // history, as contacts that have just formed (read_neighbors).
+  if (H != s.neighbors.history_size() && H != 0)
     throw CheckpointError(file + ": contact history of " + std::to_string(H) + " doubles per contact, the case's " +
                           "contact law keeps " + std::to_string(s.neighbors.history_size()) +
                           ": the checkpoint was written for different contact-law slots");
@@ -587,9 +622,19 @@ void check_compatible(const h5::File& f, sim::Scene& s) {
   s.particles.visit_fields([&](const char* name, const char*, auto& vec, int width) {
     using T = typename std::decay_t<decltype(vec)>::value_type;
     const std::string ds = std::string("/particles/") + name;
-    if (!f.exists(ds))
-      throw CheckpointError(file + ": has no particle field '" + name +
-                            "', which this case needs: the checkpoint was written for a different case");
+    if (!f.exists(ds)) {
+      if (!may_start_fresh(name))
+        throw CheckpointError(file + ": has no particle field '" + name +
+                              "', which this case needs: the checkpoint was written for a different case");
+      if (std::string(name) == "inertia") {  // the fresh value is a solid sphere's
+        std::vector<std::int32_t> shape;
+        f.read_vector("/particles/shape", shape, n, 1);
+        if (std::any_of(shape.begin(), shape.end(), [](std::int32_t k) { return k != sim::kSphere; }))
+          throw CheckpointError(file + ": has no particle field 'inertia' and holds non-spherical particles: the "
+                                "checkpoint was written for a different case");
+      }
+      return;
+    }
     const auto shape = f.shape(ds);
     const std::size_t cols = static_cast<std::size_t>(h5::Elem<T>::n) * static_cast<std::size_t>(width);
     if (shape.first != n || shape.second != cols)

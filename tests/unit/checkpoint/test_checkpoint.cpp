@@ -255,6 +255,53 @@ TEST(Checkpoint, RefusesACheckpointOfADifferentCase) {
   EXPECT_THROW(io::checkpoint_info(tmp.path / "missing.h5"), io::CheckpointError);
 }
 
+// A stage of frictionless spheres keeps no rotation state and no contact
+// history; a frictional case may continue from it (cases/triaxial: a dense
+// sample consolidated frictionless, then sheared): those start as a new
+// particle's and a new contact's. The other way round stays refused.
+TEST(Checkpoint, AFrictionlessStageContinuesAsAFrictionalOne) {
+  TempDir tmp("frictionless");
+  const std::vector<std::string> frictionless = {"materials.0.friction=0", "materials.0.rolling_friction=0"};
+  auto a = make(silo_case(), frictionless);
+  a.pipeline.initialize(a.scene);
+  for (int k = 0; k < 300; ++k) a.pipeline.step(a.scene);
+  ASSERT_EQ(a.scene.neighbors.history_size(), 0);
+  ASSERT_TRUE(a.scene.particles.omega.empty());
+  const fs::path file = tmp.path / "frictionless.h5";
+  io::write_checkpoint(file, a.scene, {});
+
+  auto b = make(silo_case());
+  const int H = b.scene.neighbors.history_size();
+  ASSERT_GT(H, 0);
+  io::read_checkpoint(file, b.scene);
+  const auto& p = b.scene.particles;
+  ASSERT_EQ(p.n_owned(), a.scene.particles.n_owned());
+  for (std::size_t i = 0; i < p.n_owned(); ++i) {
+    EXPECT_EQ(p.x[i], a.scene.particles.x[i]);
+    EXPECT_EQ(p.v[i], a.scene.particles.v[i]);
+    EXPECT_EQ(p.omega[i], sim::Vec3::Zero());
+    EXPECT_EQ(p.torque[i], sim::Vec3::Zero());
+    const double I = 0.4 * p.mass[i] * p.radius[i] * p.radius[i];
+    EXPECT_EQ(p.inertia[i], sim::Vec3(I, I, I));
+  }
+  EXPECT_TRUE(std::all_of(p.wall_history.begin(), p.wall_history.end(), [](double h) { return h == 0.0; }));
+  const auto& nl = b.scene.neighbors;
+  EXPECT_EQ(nl.partner, a.scene.neighbors.partner);
+  EXPECT_EQ(nl.history.size(), nl.partner.size() * static_cast<std::size_t>(H));
+  EXPECT_TRUE(std::all_of(nl.history.begin(), nl.history.end(), [](double h) { return h == 0.0; }));
+  // It runs on, frictional: the grains start to spin.
+  for (int k = 0; k < 300; ++k) b.pipeline.step(b.scene);
+  double spin = 0;
+  for (const auto& w : b.scene.particles.omega) spin = std::max(spin, w.norm());
+  EXPECT_GT(spin, 0.0);
+
+  // The other way round a checkpoint's state would be dropped: refused.
+  const fs::path frictional = tmp.path / "frictional.h5";
+  io::write_checkpoint(frictional, b.scene, {});
+  auto c = make(silo_case(), frictionless);
+  EXPECT_THROW(io::read_checkpoint(frictional, c.scene), io::CheckpointError);
+}
+
 TEST(Checkpoint, CaseSectionIsValidatedWithLocations) {
   try {
     make(silo_case("{every: 0.001, keep: 0, evry_steps: 3}"));
