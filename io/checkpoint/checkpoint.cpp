@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
@@ -344,18 +343,9 @@ void check_format(const h5::File& f) {
 
 std::size_t particle_count(const h5::File& f) { return std::stoull(f.read_attribute("/particles", "count")); }
 
-// Fields a checkpoint may lack because its stage ran without the effect
-// that keeps them (frictionless spheres: no rotation state, no wall
-// history), while the continuing case has it: they start as a new
-// particle's, which is the exact state then (a frictionless sphere neither
-// spins nor stretches a tangential spring; a sphere's inertia follows from
-// its mass and radius).
-bool may_start_fresh(const std::string& name) {
-  return name == "angular_velocity" || name == "torque" || name == "inertia" || name == "wall_history" ||
-         name == "wall_contact_normal";
-}
-
-void read_particles(const h5::File& f, sim::ParticleStore& p) {
+// Returns the fields the checkpoint lacked (FieldInfo::restart_fresh, allowed
+// by check_compatible), which start as a new particle's.
+std::vector<std::string> read_particles(const h5::File& f, sim::ParticleStore& p) {
   const std::size_t n = particle_count(f);
   // Resize through the public interface: empty the store, then add n
   // placeholders, which allocates every configured field; all are overwritten.
@@ -380,16 +370,11 @@ void read_particles(const h5::File& f, sim::ParticleStore& p) {
     }
     fresh.emplace_back(fi.name);
   });
-  if (!fresh.empty()) {
-    std::string list;
-    for (const auto& name : fresh) list += (list.empty() ? "" : ", ") + name;
-    std::fprintf(stderr, "grains: restart: %s has no %s (its stage ran without them): they start as a new particle's\n",
-                 f.path().c_str(), list.c_str());
-  }
   for (const auto& c : f.children("/particles"))
     if (std::find(seen.begin(), seen.end(), c) == seen.end())
       throw CheckpointError(f.path() + ": has particle field '" + c +
                             "', which this case does not use: the checkpoint was written for a different case");
+  return fresh;
 }
 
 void read_bodies(const h5::File& f, sim::Scene& s) {
@@ -619,20 +604,17 @@ void check_compatible(const h5::File& f, sim::Scene& s) {
     }
   });
   const std::size_t n = particle_count(f);
-  s.particles.visit_fields([&](const char* name, const char*, auto& vec, int width) {
-    using T = typename std::decay_t<decltype(vec)>::value_type;
-    const std::string ds = std::string("/particles/") + name;
+  std::vector<std::string> fresh;
+  s.particles.declare_fields([&](const sim::ParticleStore::FieldInfo& fi, auto member, auto) {
+    using T = typename std::decay_t<decltype(s.particles.*member)>::value_type;
+    const std::string name = fi.name;
+    const int width = fi.width;
+    const std::string ds = "/particles/" + name;
     if (!f.exists(ds)) {
-      if (!may_start_fresh(name))
+      if (!fi.restart_fresh)
         throw CheckpointError(file + ": has no particle field '" + name +
                               "', which this case needs: the checkpoint was written for a different case");
-      if (std::string(name) == "inertia") {  // the fresh value is a solid sphere's
-        std::vector<std::int32_t> shape;
-        f.read_vector("/particles/shape", shape, n, 1);
-        if (std::any_of(shape.begin(), shape.end(), [](std::int32_t k) { return k != sim::kSphere; }))
-          throw CheckpointError(file + ": has no particle field 'inertia' and holds non-spherical particles: the "
-                                "checkpoint was written for a different case");
-      }
+      fresh.push_back(name);
       return;
     }
     const auto shape = f.shape(ds);
@@ -642,6 +624,16 @@ void check_compatible(const h5::File& f, sim::Scene& s) {
                             " values per particle, this case needs " + std::to_string(cols) +
                             ": the checkpoint was written for a different case (walls or contact-law slots)");
   });
+  // A new particle's value of those fields is a sphere's (a solid sphere's
+  // inertia); other shapes always carry them.
+  if (!fresh.empty()) {
+    std::vector<std::int32_t> shape;
+    f.read_vector("/particles/shape", shape, n, 1);
+    if (std::any_of(shape.begin(), shape.end(), [](std::int32_t k) { return k != sim::kSphere; }))
+      throw CheckpointError(file + ": has no particle field '" + fresh.front() +
+                            "' and holds non-spherical particles, which always have it: the checkpoint was written "
+                            "for a different case");
+  }
 }
 
 }  // namespace
@@ -654,7 +646,7 @@ CheckpointExtras read_checkpoint(const fs::path& file, sim::Scene& s) {
     const auto step = f.read_scalar<std::int64_t>("/clock/step");
     read_walls(f, s.walls);
     read_domain(f, file.string(), s.domain);
-    read_particles(f, s.particles);
+    auto fresh = read_particles(f, s.particles);
     if (s.particles.fields().has(sim::Field::Body)) read_bodies(f, s);
     read_neighbors(f, s);
     s.clock.step = step;
@@ -662,6 +654,7 @@ CheckpointExtras read_checkpoint(const fs::path& file, sim::Scene& s) {
     s.lost_particles = f.read_scalar<std::int64_t>("/scene/lost_particles");
     read_growth(f, s.growth);
     CheckpointExtras x;
+    x.fresh_fields = std::move(fresh);
     x.case_path = f.read_string("/case/path");
     x.case_text = f.read_string("/case/text");
     x.case_effective = f.read_string("/case/effective");

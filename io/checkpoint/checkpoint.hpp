@@ -35,6 +35,9 @@ struct CheckpointExtras {
   /// The cut planes of the rank grid (runs on several MPI ranks; empty
   /// otherwise): a continuation on the same grid takes them over.
   std::array<std::vector<double>, 3> cuts;
+  /// Particle fields the checkpoint lacked, started as a new particle's (a
+  /// stage without their effect: FieldInfo::restart_fresh).
+  std::vector<std::string> fresh_fields;
 };
 
 /// Thrown for a checkpoint that cannot be written or read, or that does not

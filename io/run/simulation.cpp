@@ -262,7 +262,7 @@ OutputStages add_output_stages(Simulation& s, const RunOptions& opt) {
   }
   if (o.progress && !opt.quiet) s.pipeline.add(std::make_unique<Progress>(*opt.log, o.progress_interval));
   // Last of the output phase: a checkpoint holds the frames of its own step.
-  CheckpointExtras info{s.c.path, s.c.text, effective_case(s.c), {}, {}, {}};
+  CheckpointExtras info{s.c.path, s.c.text, effective_case(s.c), {}, {}, {}, {}};
   auto ck = std::make_unique<CheckpointStage>(opt.out_dir / "checkpoints",
                                               checkpoint_steps(s.c.checkpoint, s.scene.clock.dt), s.c.checkpoint.keep,
                                               std::move(info));
@@ -302,6 +302,11 @@ Runner::Runner(Simulation& s, const RunOptions& opt) : s_(s), opt_(opt) {
       s.scene.exchange->distribute_initial(s.scene, &x.cuts);
       sim::NeighborStage::full_update(s.scene, s.c.scene.sort_particles, true);
       s.scene.neighbors.keep_build_count(builds);  // (the saving run counted this update)
+    }
+    if (!x.fresh_fields.empty() && talk) {
+      *opt.log << "note: " << opt.restart.string() << " has no";
+      for (std::size_t k = 0; k < x.fresh_fields.size(); ++k) *opt.log << (k ? ", " : " ") << x.fresh_fields[k];
+      *opt.log << " (its stage ran without them): they start as a new particle's, its contacts with no history\n";
     }
     if (x.case_effective != effective_case(s.c) && talk)
       *opt.log << "note: the case differs from the one " << opt.restart.string()

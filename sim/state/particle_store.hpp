@@ -139,6 +139,11 @@ class ParticleStore {
     int width = 1;           // entries per particle
     bool kinematic = false;  // changes every step: sent in each ghost update (pack_kinematics)
     bool ghost_zero = false; // a ghost starts from zero (an accumulator, history), not from its owner's value
+    // A checkpoint of a stage without this field's effect (frictionless
+    // spheres: no rotation, no wall history) may lack it; a restart with the
+    // effect then starts it as a new particle's, the exact state of such
+    // spheres (io/checkpoint, docs/checkpoint.md).
+    bool restart_fresh = false;
   };
   /// The arguments of add(): what a new particle's fields are made from.
   struct NewParticle {
@@ -167,20 +172,20 @@ class ParticleStore {
     fn(FieldInfo{"inv_mass", "1/kg"}, &P::inv_mass, [](Q q) { return 1.0 / q.m; });
     fn(FieldInfo{"material", ""}, &P::material, [](Q q) { return std::int32_t(q.material); });
     fn(FieldInfo{"shape", ""}, &P::shape, [](Q q) { return std::int32_t(q.shape); });
-    if (fields_.has(Field::AngularVelocity)) fn(FieldInfo{"angular_velocity", "rad/s", 1, true}, &P::omega, zero3);
-    if (fields_.has(Field::Torque)) fn(FieldInfo{"torque", "N m", 1, false, true}, &P::torque, zero3);
+    if (fields_.has(Field::AngularVelocity)) fn(FieldInfo{"angular_velocity", "rad/s", 1, true, false, true}, &P::omega, zero3);
+    if (fields_.has(Field::Torque)) fn(FieldInfo{"torque", "N m", 1, false, true, true}, &P::torque, zero3);
     if (fields_.has(Field::Inertia))  // a solid sphere; shapes overwrite
-      fn(FieldInfo{"inertia", "kg m^2"}, &P::inertia, [](Q q) {
+      fn(FieldInfo{"inertia", "kg m^2", 1, false, false, true}, &P::inertia, [](Q q) {
         const double i = 0.4 * q.m * q.r * q.r;
         return Vec3(i, i, i);
       });
     if (fields_.has(Field::Orientation))
       fn(FieldInfo{"orientation", "", 1, true}, &P::orientation, [](Q) { return Quat(Quat::Identity()); });
     if (wall_history_size_ > 0)
-      fn(FieldInfo{"wall_history", "m (tangential), N m (rolling)", wall_history_size_, false, true}, &P::wall_history,
+      fn(FieldInfo{"wall_history", "m (tangential), N m (rolling)", wall_history_size_, false, true, true}, &P::wall_history,
          [](Q) { return 0.0; });
     if (wall_tag_size_ > 0)
-      fn(FieldInfo{"wall_contact_normal", "", wall_tag_size_, false, true}, &P::wall_tags, [](Q) { return 0.0; });
+      fn(FieldInfo{"wall_contact_normal", "", wall_tag_size_, false, true, true}, &P::wall_tags, [](Q) { return 0.0; });
     if (fields_.has(Field::AngularMomentum)) fn(FieldInfo{"angular_momentum", "kg m^2/s"}, &P::angular_momentum, zero3);
     if (fields_.has(Field::SemiAxes)) fn(FieldInfo{"semi_axes", "m"}, &P::semi_axes, [](Q q) { return Vec3(q.r, q.r, q.r); });
     if (fields_.has(Field::ShapeForm))

@@ -26,7 +26,7 @@ TEST(Checkpoint, RoundTripRestoresEveryFieldListAndWall) {
   a.pipeline.initialize(a.scene);
   for (int k = 0; k < 437; ++k) a.pipeline.step(a.scene);  // mid-way between list builds
   const fs::path file = tmp.path / "x.h5";
-  io::write_checkpoint(file, a.scene, {"silo.yaml", "text", "effective", {0.0, 1.0}, {0, 300}, {}});
+  io::write_checkpoint(file, a.scene, {"silo.yaml", "text", "effective", {0.0, 1.0}, {0, 300}, {}, {}});
   ASSERT_TRUE(fs::exists(file));
   EXPECT_FALSE(fs::exists(tmp.path / ".x.h5.tmp"));
 
@@ -61,7 +61,7 @@ TEST(Checkpoint, ReadsTheWallNearListsOfEarlierCheckpoints) {
   a.pipeline.initialize(a.scene);
   for (int k = 0; k < 437; ++k) a.pipeline.step(a.scene);
   const fs::path file = tmp.path / "x.h5";
-  io::write_checkpoint(file, a.scene, {"silo.yaml", "text", "effective", {}, {}, {}});
+  io::write_checkpoint(file, a.scene, {"silo.yaml", "text", "effective", {}, {}, {}, {}});
   ASSERT_EQ(a.scene.neighbors.wall_near.size(), 2u);  // the floor, then the silo (its list may be empty)
   ASSERT_FALSE(a.scene.neighbors.wall_near[0].empty());
   {
@@ -273,7 +273,8 @@ TEST(Checkpoint, AFrictionlessStageContinuesAsAFrictionalOne) {
   auto b = make(silo_case());
   const int H = b.scene.neighbors.history_size();
   ASSERT_GT(H, 0);
-  io::read_checkpoint(file, b.scene);
+  const auto x = io::read_checkpoint(file, b.scene);
+  EXPECT_EQ(x.fresh_fields, (std::vector<std::string>{"angular_velocity", "torque", "inertia", "wall_history"}));
   const auto& p = b.scene.particles;
   ASSERT_EQ(p.n_owned(), a.scene.particles.n_owned());
   for (std::size_t i = 0; i < p.n_owned(); ++i) {

@@ -615,7 +615,7 @@ TEST(MeshWall, NearItemsThatDoNotFitItsNearListAreAnError) {
   ASSERT_EQ(sc.neighbors.wall_items.at(0).start.size(), 2u);
   // A checkpoint whose items were lost is refused at restore, saying which.
   const fs::path h5 = scratch("floor_items.h5");
-  io::write_checkpoint(h5, sc, {"floor.yaml", "text", "effective", {}, {}, {}});
+  io::write_checkpoint(h5, sc, {"floor.yaml", "text", "effective", {}, {}, {}, {}});
   {
     const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
     ASSERT_GE(f, 0);
