@@ -296,6 +296,31 @@ TEST(Checkpoint, AFrictionlessStageContinuesAsAFrictionalOne) {
   for (const auto& w : b.scene.particles.omega) spin = std::max(spin, w.norm());
   EXPECT_GT(spin, 0.0);
 
+  // Such a checkpoint holding a non-spherical particle was written for
+  // another case (other shapes always rotate): refused, saying so.
+  {
+    const fs::path odd = tmp.path / "odd.h5";
+    fs::copy_file(file, odd);
+    const hid_t h = H5Fopen(odd.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(h, 0);
+    const hid_t d = H5Dopen2(h, "/particles/shape", H5P_DEFAULT);
+    std::vector<std::int32_t> shape(a.scene.particles.n_owned(), 0);
+    shape[7] = sim::kEllipsoid;
+    EXPECT_GE(H5Dwrite(d, H5T_NATIVE_INT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, shape.data()), 0);
+    H5Dclose(d);
+    H5Fclose(h);
+    auto e = make(silo_case());
+    try {
+      io::read_checkpoint(odd, e.scene);
+      ADD_FAILURE() << "no error for a non-spherical particle without rotation state";
+    } catch (const io::CheckpointError& err) {
+      EXPECT_NE(std::string(err.what()).find("has no particle field 'angular_velocity' and holds non-spherical "
+                                             "particles"),
+                std::string::npos)
+          << err.what();
+    }
+  }
+
   // The other way round a checkpoint's state would be dropped: refused.
   const fs::path frictional = tmp.path / "frictional.h5";
   io::write_checkpoint(frictional, b.scene, {});
