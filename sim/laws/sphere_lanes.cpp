@@ -4,6 +4,7 @@
 // sphere_lanes_avx512.cpp; the copy is chosen once, at run time, by the CPU
 // (GRAINS_SIMD=baseline or =avx2 caps it).
 #include "sim/laws/sphere_lanes.inc"
+#include "sim/laws/sphere_lanes_screen.hpp"
 
 #include <cstdlib>
 
@@ -15,6 +16,8 @@ void hertz_mindlin_lanes_isa(SphereContactBatch&);
 }  // namespace isa_avx
 namespace isa_avx512 {
 void hertz_mindlin_lanes_isa(SphereContactBatch&);
+int screen_rows(const SphereScreenFields&, SphereContactBatch&, int, std::size_t&, std::uint32_t&, std::size_t, bool);
+void gather_lanes(const SphereScreenFields&, SphereContactBatch&, int);
 }  // namespace isa_avx512
 #endif
 
@@ -51,5 +54,19 @@ bool sphere_lanes_enabled() {
 }
 
 const char* sphere_lanes_instruction_set() { return lane_copy().name; }
+
+// The list passes in AVX-512 go with the kernel's AVX-512 copy.
+SphereScreenFn sphere_screen_avx512() {
+#if GRAINS_LANES_AVX2
+  if (std::strcmp(lane_copy().name, "avx512") == 0) return isa_avx512::screen_rows;
+#endif
+  return nullptr;
+}
+SphereGatherFn sphere_gather_avx512() {
+#if GRAINS_LANES_AVX2
+  if (std::strcmp(lane_copy().name, "avx512") == 0) return isa_avx512::gather_lanes;
+#endif
+  return nullptr;
+}
 
 }  // namespace grains::sim

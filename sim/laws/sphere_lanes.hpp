@@ -26,23 +26,26 @@ namespace grains::sim {
 /// writes. Lanes past `count` up to a multiple of kPad must hold a finite
 /// contact (the stage repeats the last one there); their outputs are unused.
 struct SphereContactBatch {
-  static constexpr int kSize = 32;  // a multiple of kPad
+  static constexpr int kSize = 32;  // lanes at which a batch is computed; a multiple of kPad
   static constexpr int kPad = 8;    // a multiple of every copy's lane count (AVX-512: 8)
+  // Room: the AVX-512 list passes (sphere_lanes_screen.hpp) store eight
+  // lanes at a time, so a batch may reach kSize + kPad - 1 lanes.
+  static constexpr int kRoom = kSize + kPad;
   int count = 0;
   double dt = 0;
   // Geometry: d = x_i - x_j, |d|^2; the radii.
-  alignas(64) double dx[kSize], dy[kSize], dz[kSize], d2[kSize], ri[kSize], rj[kSize];
+  alignas(64) double dx[kRoom], dy[kRoom], dz[kRoom], d2[kRoom], ri[kRoom], rj[kRoom];
   // Motion: v_i - v_j, omega_i, omega_j.
-  alignas(64) double vx[kSize], vy[kSize], vz[kSize];
-  alignas(64) double wix[kSize], wiy[kSize], wiz[kSize], wjx[kSize], wjy[kSize], wjz[kSize];
+  alignas(64) double vx[kRoom], vy[kRoom], vz[kRoom];
+  alignas(64) double wix[kRoom], wiy[kRoom], wiz[kRoom], wjx[kRoom], wjy[kRoom], wjz[kRoom];
   // The pair's R* and m* (NeighborList::PairConstants) and its material pair's
   // E*, G*, damping a, tangential damping ratio, friction (PairParams).
-  alignas(64) double R[kSize], m[kSize], E[kSize], G[kSize], a[kSize], tdr[kSize], mu[kSize];
+  alignas(64) double R[kRoom], m[kRoom], E[kRoom], G[kRoom], a[kRoom], tdr[kRoom], mu[kRoom];
   // The tangential spring: read, and written back updated.
-  alignas(64) double hx[kSize], hy[kSize], hz[kSize];
+  alignas(64) double hx[kRoom], hy[kRoom], hz[kRoom];
   // Outputs: the force on i (j gets minus it) and the torques on i and j.
-  alignas(64) double fx[kSize], fy[kSize], fz[kSize];
-  alignas(64) double tix[kSize], tiy[kSize], tiz[kSize], tjx[kSize], tjy[kSize], tjz[kSize];
+  alignas(64) double fx[kRoom], fy[kRoom], fz[kRoom];
+  alignas(64) double tix[kRoom], tiy[kRoom], tiz[kRoom], tjx[kRoom], tjy[kRoom], tjz[kRoom];
 };
 
 /// Computes lanes [0, count rounded up to the lane count) of the batch.

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "sim/laws/probe_entries.hpp"
+#include "sim/laws/sphere_lanes_screen.hpp"
 #include "sim/scene/scene.hpp"
 
 namespace grains::sim {
@@ -18,7 +19,7 @@ constexpr std::size_t kPrefetchFrom = std::size_t{1} << 15;
 
 void copy_lane(SphereContactBatch& b, int from, int to) {
   using B = SphereContactBatch;
-  static constexpr double(B::*inputs[])[B::kSize] = {
+  static constexpr double(B::*inputs[])[B::kRoom] = {
       &B::dx,  &B::dy,  &B::dz, &B::d2, &B::ri, &B::rj, &B::vx, &B::vy,  &B::vz, &B::wix, &B::wiy, &B::wiz, &B::wjx,
       &B::wjy, &B::wjz, &B::R,  &B::m,  &B::E,  &B::G,  &B::a,  &B::tdr, &B::mu, &B::hx,  &B::hy,  &B::hz};
   for (auto a : inputs) (b.*a)[to] = (b.*a)[from];
@@ -33,7 +34,9 @@ void copy_lane(SphereContactBatch& b, int from, int to) {
 // quarter of the entries in a dense bed do not touch, in no pattern); the
 // second gathers the motion, constants and springs of the kept lanes.
 // (Gathering everything in the first pass, for every entry, measured 3 %
-// slower on the 10^4 bed: bench/RESULTS.md, 2026-11-29.)
+// slower on the 10^4 bed: bench/RESULTS.md, 2026-11-29.) With AVX-512F both
+// passes run eight entries at a time in sphere_lanes_screen_avx512.cpp.
+// (bench/RESULTS.md, 2026-12-02: the pair stage 24 % faster on the 10^4 bed.)
 //
 // Every field is read through a pointer taken before the loops, apply is a
 // copy (a lambda holding its target pointers) and the lane count a local:
@@ -44,7 +47,7 @@ void copy_lane(SphereContactBatch& b, int from, int to) {
 // NeighborList::pair_radius and pair_mass compute them).
 template <bool Prefetch, class Apply>
 void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::size_t row_end, Apply apply) {
-  constexpr int kSize = SphereContactBatch::kSize;
+  constexpr int kSize = SphereContactBatch::kSize, kRoom = SphereContactBatch::kRoom;
   const ParticleStore& p = s.particles;
   NeighborList& nl = s.neighbors;
   const std::uint32_t* const row_start = nl.row_start.data();
@@ -65,49 +68,75 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
   const bool one_material = pairs.size() == 1;
   if (one_material) {
     const PairParams& pp = pairs(0, 0);
-    std::fill_n(b.E, kSize, pp.E_eff), std::fill_n(b.G, kSize, pp.G_eff), std::fill_n(b.a, kSize, pp.damping);
-    std::fill_n(b.tdr, kSize, pp.tangential_damping_ratio), std::fill_n(b.mu, kSize, pp.friction);
+    std::fill_n(b.E, kRoom, pp.E_eff), std::fill_n(b.G, kRoom, pp.G_eff), std::fill_n(b.a, kRoom, pp.damping);
+    std::fill_n(b.tdr, kRoom, pp.tangential_damping_ratio), std::fill_n(b.mu, kRoom, pp.friction);
   }
-  std::uint32_t row_of[kSize], entry_of[kSize], partner_of[kSize];
-  alignas(64) double mi[kSize], mj[kSize];
+  alignas(32) std::uint32_t row_of[kRoom], entry_of[kRoom], partner_of[kRoom];
+  alignas(64) double mi[kRoom], mj[kRoom];
   int n = 0;  // lanes filled
   b.dt = s.clock.dt;
+  // The list passes eight entries at a time where the processor has
+  // AVX-512F (sphere_lanes_screen.hpp); the second one with one material
+  // and no frozen grains only (else the scalar one below).
+  static_assert(sizeof(Vec3) == 3 * sizeof(double));
+  const SphereScreenFn screen = sphere_screen_avx512();
+  const SphereGatherFn gather = one_material && !frozen ? sphere_gather_avx512() : nullptr;
+  auto doubles = [](const Vec3* a) { return reinterpret_cast<const double*>(a); };
+  const SphereScreenFields in{row_start,         partner,   nl.partner.size(),        may_touch, history, doubles(x),
+                              radius,            doubles(v), doubles(w),              mass,      doubles(p.f.data()),
+                              doubles(p.torque.data()), reach, row_of,                entry_of,  partner_of};
   // (Inlined at both calls: a call would keep the lane count in memory, its
   // every increment a store and a load on the path of the next entry.)
+  // A batch is computed kSize lanes at a time: the AVX-512 screen may have
+  // filled up to kPad - 1 lanes more, which move to the front of the next
+  // batch (so the kernel computes no padding lanes but at the end).
   auto flush = [&]() __attribute__((always_inline)) {
     if (n == 0) return;
-    for (int l = 0; l < n; ++l) {
-      const std::size_t i = row_of[l], k = entry_of[l], j = partner_of[l];
-      const Vec3 dv = v[i] - v[j];
-      b.vx[l] = dv.x(), b.vy[l] = dv.y(), b.vz[l] = dv.z();
-      b.wix[l] = w[i].x(), b.wiy[l] = w[i].y(), b.wiz[l] = w[i].z();
-      b.wjx[l] = w[j].x(), b.wjy[l] = w[j].y(), b.wjz[l] = w[j].z();
-      if (frozen)
-        b.m[l] = nl.pair_mass(p, i, j);
-      else
-        mi[l] = mass[i], mj[l] = mass[j];
-      if (!one_material) {
-        const PairParams& pp = pairs(material[i], material[j]);
-        b.E[l] = pp.E_eff, b.G[l] = pp.G_eff, b.a[l] = pp.damping, b.tdr[l] = pp.tangential_damping_ratio;
-        b.mu[l] = pp.friction;
+    const int m = n < kSize ? n : kSize;
+    if (gather) {
+      gather(in, b, m);
+    } else {
+      for (int l = 0; l < m; ++l) {
+        const std::size_t i = row_of[l], k = entry_of[l], j = partner_of[l];
+        const Vec3 dv = v[i] - v[j];
+        b.vx[l] = dv.x(), b.vy[l] = dv.y(), b.vz[l] = dv.z();
+        b.wix[l] = w[i].x(), b.wiy[l] = w[i].y(), b.wiz[l] = w[i].z();
+        b.wjx[l] = w[j].x(), b.wjy[l] = w[j].y(), b.wjz[l] = w[j].z();
+        if (frozen)
+          b.m[l] = nl.pair_mass(p, i, j);
+        else
+          mi[l] = mass[i], mj[l] = mass[j];
+        if (!one_material) {
+          const PairParams& pp = pairs(material[i], material[j]);
+          b.E[l] = pp.E_eff, b.G[l] = pp.G_eff, b.a[l] = pp.damping, b.tdr[l] = pp.tangential_damping_ratio;
+          b.mu[l] = pp.friction;
+        }
+        const double* h = history + k * 3;
+        b.hx[l] = h[0], b.hy[l] = h[1], b.hz[l] = h[2];
       }
-      const double* h = history + k * 3;
-      b.hx[l] = h[0], b.hy[l] = h[1], b.hz[l] = h[2];
+      // R* = ri rj / (ri + rj), m* = mi mj / (mi + mj) (with frozen grains the
+      // list's pair_mass, above): lane by lane, as the list's pair_radius and pair_mass.
+      for (int l = 0; l < m; ++l) b.R[l] = b.ri[l] * b.rj[l] / (b.ri[l] + b.rj[l]);
+      if (!frozen)
+        for (int l = 0; l < m; ++l) b.m[l] = mi[l] * mj[l] / (mi[l] + mj[l]);
     }
-    // R* = ri rj / (ri + rj), m* = mi mj / (mi + mj) (with frozen grains the
-    // list's pair_mass, above): lane by lane, as the list's pair_radius and pair_mass.
-    for (int l = 0; l < n; ++l) b.R[l] = b.ri[l] * b.rj[l] / (b.ri[l] + b.rj[l]);
-    if (!frozen)
-      for (int l = 0; l < n; ++l) b.m[l] = mi[l] * mj[l] / (mi[l] + mj[l]);
-    b.count = n;
-    for (int l = n; l % SphereContactBatch::kPad != 0; ++l) copy_lane(b, n - 1, l);  // padding: a finite contact
+    b.count = m;
+    for (int l = m; l % SphereContactBatch::kPad != 0; ++l) copy_lane(b, m - 1, l);  // padding: a finite contact
     hertz_mindlin_lanes(b);
-    for (int l = 0; l < n; ++l) {
+    for (int l = 0; l < m; ++l) {
       double* h = history + static_cast<std::size_t>(entry_of[l]) * 3;
       h[0] = b.hx[l], h[1] = b.hy[l], h[2] = b.hz[l];
       apply(l, row_of[l], partner_of[l], entry_of[l], b);
     }
-    n = 0;
+    // (m = kSize, a multiple of kPad, whenever lanes remain: no padding
+    // overwrote them.)
+    for (int l = m; l < n; ++l) {
+      const int to = l - m;
+      b.dx[to] = b.dx[l], b.dy[to] = b.dy[l], b.dz[to] = b.dz[l], b.d2[to] = b.d2[l];
+      b.ri[to] = b.ri[l], b.rj[to] = b.rj[l];
+      row_of[to] = row_of[l], entry_of[to] = entry_of[l], partner_of[to] = partner_of[l];
+    }
+    n -= m;
   };
   // Prefetches (no effect on results), in scenes larger than the cache
   // (kPrefetchFrom): there the partner of an entry lies up to a layer of
@@ -119,6 +148,16 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
   constexpr std::uint32_t kPrefetch = 16;
   [[maybe_unused]] const Vec3* const f = p.f.data();
   [[maybe_unused]] const Vec3* const torque = p.torque.data();
+  if (screen) {
+    std::size_t i = row_begin;
+    std::uint32_t k = 0;
+    while (i < row_end) {
+      n = screen(in, b, n, i, k, row_end, Prefetch);
+      if (n >= kSize) flush();
+    }
+    while (n > 0) flush();
+    return;
+  }
   const auto end = row_end > row_begin ? row_start[row_end] : 0;
   for (std::size_t i = row_begin; i < row_end; ++i) {
     const Vec3 xi = x[i];

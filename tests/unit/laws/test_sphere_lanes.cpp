@@ -6,7 +6,8 @@
 // prefetch in large ones); also with one material (its constants written
 // once per batch) and with frozen grains (m* is the other grain's mass).
 // Forces, torques and springs must agree to the bit, batch boundaries and
-// padded lanes included.
+// padded lanes included (and, on a processor with AVX-512F, the list passes
+// of sphere_lanes_screen.hpp with the lanes they carry into the next batch).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -14,6 +15,7 @@
 #include <string>
 
 #include "sim/laws/pair_contact_stage.hpp"
+#include "sim/laws/sphere_lanes_screen.hpp"
 
 namespace grains::sim {
 namespace {
@@ -121,6 +123,21 @@ TEST(SphereLanes, OneMaterialEqualsTheScalarLoopBitwise) {
 TEST(SphereLanes, FrozenGrainsEqualTheScalarLoopBitwise) {
   compare(false, Kind::Frozen);
   compare(true, Kind::Frozen);
+}
+
+TEST(SphereLanes, ListPassesInAvx512WithTheKernelsAvx512Copy) {
+  // The comparisons above cover the AVX-512 list passes only where they run:
+  // with the kernel's AVX-512 copy (this run on such a processor), never
+  // under GRAINS_SIMD=avx2 or =baseline (the runs of CMakeLists.txt).
+  const bool avx512 = std::string(sphere_lanes_instruction_set()) == "avx512";
+  EXPECT_EQ(sphere_screen_avx512() != nullptr, avx512) << sphere_lanes_instruction_set();
+  EXPECT_EQ(sphere_gather_avx512() != nullptr, avx512) << sphere_lanes_instruction_set();
+#if defined(__x86_64__)
+  const char* env = std::getenv("GRAINS_SIMD");
+  if (!env && __builtin_cpu_supports("avx512f")) {
+    EXPECT_TRUE(avx512) << "this processor has AVX-512F";
+  }
+#endif
 }
 
 TEST(SphereLanes, SomeSpringsSlide) {

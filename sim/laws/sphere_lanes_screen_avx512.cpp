@@ -1,0 +1,155 @@
+// The sphere lanes' list passes with AVX-512F: see sphere_lanes_screen.hpp.
+// Compiled with -mavx512f and no FMA contraction (sim/CMakeLists.txt); chosen
+// at run time by sphere_lanes.cpp.
+#if !defined(__AVX512F__)
+#error "sphere_lanes_screen_avx512.cpp must be compiled with -mavx512f"
+#endif
+// GCC 12 warns of its own _mm512_undefined_* inside the cast intrinsics
+// (GCC bug 105593, fixed in GCC 13): not a value of ours.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+#include <immintrin.h>
+
+#include <cstring>
+
+#include "sim/laws/sphere_lanes_screen.hpp"
+
+namespace grains::sim::isa_avx512 {
+
+namespace {
+
+using B = SphereContactBatch;
+static_assert(B::kPad == 8 && B::kRoom >= B::kSize + 8, "a pass stores eight lanes from any lane below kSize");
+
+// Eight 32-bit indices (masked: lanes past the mask read nothing) widened to 64 bits.
+inline __m512i load_index(const std::uint32_t* p, __mmask8 m) {
+  return _mm512_maskz_cvtepu32_epi64(0xff, _mm512_castsi512_si256(_mm512_maskz_loadu_epi32(static_cast<__mmask16>(m), p)));
+}
+inline __m512i times3(__m512i i) { return _mm512_add_epi64(_mm512_maskz_slli_epi64(0xff, i, 1), i); }
+inline __m512d gather(const double* base, __m512i index, __mmask8 m) {
+  return _mm512_mask_i64gather_pd(_mm512_setzero_pd(), m, index, base, 8);
+}
+// Stores the lanes of v that m selects, packed, at p (eight lanes written).
+inline void pack(double* p, __mmask8 m, __m512d v) { _mm512_storeu_pd(p, _mm512_maskz_compress_pd(m, v)); }
+inline void pack(std::uint32_t* p, __mmask8 m, __m512i v16) {
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(p),
+                      _mm512_castsi512_si256(_mm512_maskz_compress_epi32(static_cast<__mmask16>(m), v16)));
+}
+
+}  // namespace
+
+int screen_rows(const SphereScreenFields& in, SphereContactBatch& b, int n, std::size_t& i_io, std::uint32_t& k_io,
+                std::size_t row_end, bool prefetch) {
+  const std::uint32_t* const row_start = in.row_start;
+  const std::uint32_t* const partner = in.partner;
+  std::uint8_t* const may_touch = in.may_touch;
+  const double* const x = in.x;
+  const double* const radius = in.radius;
+  const __m512d reach = _mm512_set1_pd(in.reach);
+  const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 0, 0, 0, 0, 0, 0, 0, 0);
+  const std::size_t entries = in.entries;
+  std::size_t i = i_io;
+  std::uint32_t k = k_io;
+  for (; i < row_end; ++i) {
+    const std::uint32_t end = row_start[i + 1];
+    if (k < row_start[i]) k = row_start[i];
+    if (k >= end) continue;
+    const __m512d xi = _mm512_set1_pd(x[3 * i]), yi = _mm512_set1_pd(x[3 * i + 1]), zi = _mm512_set1_pd(x[3 * i + 2]);
+    const __m512d ri = _mm512_set1_pd(radius[i]);
+    const __m256i row = _mm256_set1_epi32(static_cast<int>(i));
+    while (k < end) {
+      const std::uint32_t count = end - k < 8 ? end - k : 8;
+      const __mmask8 live = static_cast<__mmask8>((1u << count) - 1);
+      const __m512i j = load_index(partner + k, live);
+      const __m512i j3 = times3(j);
+      if (prefetch) {
+        // The partners 16 entries ahead (position, radius), and this group's
+        // fields for the second pass and the sums (every entry: a test of
+        // touch would be mispredicted).
+        for (std::uint32_t q = k + 16; q < k + 16 + count && q < entries; ++q) {
+          __builtin_prefetch(x + 3 * static_cast<std::size_t>(partner[q]));
+          __builtin_prefetch(radius + partner[q]);
+        }
+        for (std::uint32_t q = 0; q < count; ++q) {
+          const std::size_t pj = partner[k + q];
+          __builtin_prefetch(in.v + 3 * pj);
+          __builtin_prefetch(in.omega + 3 * pj);
+          __builtin_prefetch(in.mass + pj);
+          __builtin_prefetch(in.f + 3 * pj, 1);
+          __builtin_prefetch(in.torque + 3 * pj, 1);
+        }
+      }
+      const __m512d dx = _mm512_sub_pd(xi, gather(x, j3, live));
+      const __m512d dy = _mm512_sub_pd(yi, gather(x + 1, j3, live));
+      const __m512d dz = _mm512_sub_pd(zi, gather(x + 2, j3, live));
+      const __m512d rj = gather(radius, j, live);
+      const __m512d d2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
+      const __m512d rc = _mm512_add_pd(_mm512_add_pd(ri, rj), reach);
+      const __mmask8 touch = _mm512_mask_cmp_pd_mask(live, d2, _mm512_mul_pd(rc, rc), _CMP_NGE_UQ);
+      // may_touch: the bytes that change are written one by one (in a bed
+      // few change from step to step); a pair that came apart loses its spring.
+      std::uint64_t old_bytes = 0;
+      if (k + 8 <= entries)
+        std::memcpy(&old_bytes, may_touch + k, 8);
+      else
+        for (std::uint32_t q = 0; q < count; ++q) old_bytes |= std::uint64_t{may_touch[k + q]} << (8 * q);
+      const __mmask8 was =
+          _mm512_mask_test_epi64_mask(live, _mm512_maskz_cvtepu8_epi64(0xff, _mm_cvtsi64_si128(static_cast<long long>(old_bytes))),
+                                      _mm512_set1_epi64(0xff));
+      for (unsigned changed = static_cast<unsigned>(was ^ touch); changed != 0; changed &= changed - 1) {
+        const unsigned q = static_cast<unsigned>(__builtin_ctz(changed));
+        const bool t = (touch >> q) & 1u;
+        if (!t) std::memset(in.history + static_cast<std::size_t>(k + q) * 3, 0, 3 * sizeof(double));
+        may_touch[k + q] = t;
+      }
+      // The touching entries into lanes n, n+1, ...
+      pack(b.dx + n, touch, dx), pack(b.dy + n, touch, dy), pack(b.dz + n, touch, dz), pack(b.d2 + n, touch, d2);
+      pack(b.rj + n, touch, rj);
+      _mm512_storeu_pd(b.ri + n, ri);
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(in.row_of + n), row);
+      pack(in.entry_of + n, touch, _mm512_add_epi32(_mm512_set1_epi32(static_cast<int>(k)), iota));
+      pack(in.partner_of + n, touch, _mm512_zextsi256_si512(_mm512_maskz_cvtepi64_epi32(0xff, j)));
+      n += __builtin_popcount(touch);
+      k += count;
+      if (n >= B::kSize) {
+        if (k >= end) ++i;
+        i_io = i, k_io = k;
+        return n;
+      }
+    }
+  }
+  i_io = i, k_io = k;
+  return n;
+}
+
+void gather_lanes(const SphereScreenFields& in, SphereContactBatch& b, int n) {
+  const double* const v = in.v;
+  const double* const w = in.omega;
+  const double* const mass = in.mass;
+  const double* const history = in.history;
+  for (int l = 0; l < n; l += 8) {
+    const __mmask8 live = static_cast<__mmask8>(n - l >= 8 ? 0xff : (1u << (n - l)) - 1);
+    const __m512i i = load_index(in.row_of + l, live), j = load_index(in.partner_of + l, live);
+    const __m512i i3 = times3(i), j3 = times3(j), k3 = times3(load_index(in.entry_of + l, live));
+    _mm512_storeu_pd(b.vx + l, _mm512_sub_pd(gather(v, i3, live), gather(v, j3, live)));
+    _mm512_storeu_pd(b.vy + l, _mm512_sub_pd(gather(v + 1, i3, live), gather(v + 1, j3, live)));
+    _mm512_storeu_pd(b.vz + l, _mm512_sub_pd(gather(v + 2, i3, live), gather(v + 2, j3, live)));
+    _mm512_storeu_pd(b.wix + l, gather(w, i3, live));
+    _mm512_storeu_pd(b.wiy + l, gather(w + 1, i3, live));
+    _mm512_storeu_pd(b.wiz + l, gather(w + 2, i3, live));
+    _mm512_storeu_pd(b.wjx + l, gather(w, j3, live));
+    _mm512_storeu_pd(b.wjy + l, gather(w + 1, j3, live));
+    _mm512_storeu_pd(b.wjz + l, gather(w + 2, j3, live));
+    _mm512_storeu_pd(b.hx + l, gather(history, k3, live));
+    _mm512_storeu_pd(b.hy + l, gather(history + 1, k3, live));
+    _mm512_storeu_pd(b.hz + l, gather(history + 2, k3, live));
+    // R* = ri rj / (ri + rj), m* = mi mj / (mi + mj), as the list computes them.
+    const __m512d ri = _mm512_loadu_pd(b.ri + l), rj = _mm512_loadu_pd(b.rj + l);
+    _mm512_storeu_pd(b.R + l, _mm512_div_pd(_mm512_mul_pd(ri, rj), _mm512_add_pd(ri, rj)));
+    const __m512d mi = gather(mass, i, live), mj = gather(mass, j, live);
+    _mm512_storeu_pd(b.m + l, _mm512_div_pd(_mm512_mul_pd(mi, mj), _mm512_add_pd(mi, mj)));
+  }
+}
+
+}  // namespace grains::sim::isa_avx512
