@@ -13,7 +13,7 @@
 //
 // The generic kernels use only: + - * / with doubles mixed in, comparisons
 // giving a mask (bool for double, LaneMask for Lanes), &, select(m, a, b),
-// sqrt_(x), sign_(x) (copysign(1, x)), all_of(m), get_lane(x, l),
+// sqrt_(x), sign_(x) (copysign(1, x)), all_of(m), any_of(m), get_lane(x, l),
 // set_lane(x, l, v), lane(mask, l) and lane_count<T>.
 #include <cmath>
 #include <cstdint>
@@ -143,6 +143,13 @@ GRAINS_INLINE bool all_of(const LaneMask& m) {
       if (!m.p[i][e]) return false;
   return true;
 }
+GRAINS_INLINE bool any_of(const LaneMask& m) {
+  PackM acc = m.p[0];
+  for (int i = 1; i < kPacks; ++i) acc |= m.p[i];
+  for (int e = 0; e < kPack; ++e)
+    if (acc[e]) return true;
+  return false;
+}
 // Lanes from f(0), ..., f(kLanes - 1), assembled in registers. (Writing
 // single lanes into a pack in memory and then reading the pack would stall
 // the load on the narrower stores: store-to-load forwarding fails.)
@@ -171,6 +178,7 @@ inline double select(bool m, double a, double b) { return m ? a : b; }
 inline double sqrt_(double a) { return std::sqrt(a); }
 inline double sign_(double a) { return std::copysign(1.0, a); }
 inline bool all_of(bool m) { return m; }
+inline bool any_of(bool m) { return m; }
 inline double get_lane(double a, int) { return a; }
 inline void set_lane(double& a, int, double v) { a = v; }
 inline bool lane(bool m, int) { return m; }
