@@ -22,7 +22,7 @@ namespace {
 
 using HertzMindlin = ContactLaw<HertzNormal, SpringTangential, NoRolling, NoCohesion>;
 
-enum class Kind { TwoMaterials, OneMaterial, Frozen };
+enum class Kind { TwoMaterials, OneMaterial, Frozen, Wide, Sparse };
 
 Scene cluster(int n, std::uint64_t seed, bool deterministic, Kind kind = Kind::TwoMaterials) {
   std::mt19937_64 rng(seed);
@@ -47,7 +47,10 @@ Scene cluster(int n, std::uint64_t seed, bool deterministic, Kind kind = Kind::T
   // overlap, some deeply, some not at all.
   const double side = 0.0045 * std::cbrt(n);
   for (int k = 0; k < n; ++k) {
-    const double r = 0.005 * (1 + 0.3 * std::abs(u(rng)));
+    // Wide: every 40th sphere six times as large, so that some rows of the
+    // list hold far more entries than a lane group or a window of the
+    // AVX-512 first pass (sphere_lanes_screen_avx512.cpp).
+    const double r = 0.005 * (1 + 0.3 * std::abs(u(rng))) * (kind == Kind::Wide && k % 40 == 0 ? 6 : 1);
     const auto i = s.particles.add(k, side * Vec3(u(rng), u(rng), u(rng)), Vec3(u(rng), u(rng), u(rng)), r,
                                    2500 * 4.0 / 3.0 * M_PI * r * r * r, kind == Kind::OneMaterial ? 0 : k % 2);
     s.particles.omega[i] = 100 * Vec3(u(rng), u(rng), u(rng));
@@ -57,7 +60,10 @@ Scene cluster(int n, std::uint64_t seed, bool deterministic, Kind kind = Kind::T
   s.clock.dt = 1e-6;
   s.deterministic = deterministic;
   s.neighbors.set_gather(deterministic);
-  s.neighbors.configure(HertzMindlin::history_size, 0.001);
+  // Sparse: a skin of almost a diameter, so that most list entries do not
+  // touch and a window of the AVX-512 first pass often ends before a batch
+  // fills, inside a row.
+  s.neighbors.configure(HertzMindlin::history_size, kind == Kind::Sparse ? 0.008 : 0.001);
   s.neighbors.build(s.particles, s.walls, s.domain.lo, s.domain.hi, 0, false);
   // Springs in the tangent plane: none on every other entry, else from short
   // to far beyond the Coulomb limit.
@@ -119,6 +125,20 @@ TEST(SphereLanes, OrderedSumsEqualTheScalarLoopBitwise) { compare(true); }
 TEST(SphereLanes, OneMaterialEqualsTheScalarLoopBitwise) {
   compare(false, Kind::OneMaterial);
   compare(true, Kind::OneMaterial);
+}
+TEST(SphereLanes, WideSizesEqualTheScalarLoopBitwise) {
+  compare(false, Kind::Wide);
+  compare(true, Kind::Wide);
+  // Some row is longer than a window of the first pass (64 entries).
+  Scene s = cluster(3000, 11, false, Kind::Wide);
+  std::uint32_t longest = 0;
+  for (std::size_t i = 0; i + 1 < s.neighbors.row_start.size(); ++i)
+    longest = std::max(longest, s.neighbors.row_start[i + 1] - s.neighbors.row_start[i]);
+  EXPECT_GT(longest, 64u);
+}
+TEST(SphereLanes, SparseClustersEqualTheScalarLoopBitwise) {
+  compare(false, Kind::Sparse);
+  compare(true, Kind::Sparse);
 }
 TEST(SphereLanes, FrozenGrainsEqualTheScalarLoopBitwise) {
   compare(false, Kind::Frozen);
