@@ -17,7 +17,7 @@ void hertz_mindlin_lanes_isa(SphereContactBatch&);
 namespace isa_avx512 {
 void hertz_mindlin_lanes_isa(SphereContactBatch&);
 int screen_rows(const SphereScreenFields&, SphereContactBatch&, int, std::size_t&, std::uint32_t&, std::size_t, bool);
-void gather_lanes(const SphereScreenFields&, SphereContactBatch&, int);
+void hertz_mindlin_lanes_gathered(const SphereScreenFields&, SphereContactBatch&);
 }  // namespace isa_avx512
 #endif
 
@@ -62,9 +62,9 @@ SphereScreenFn sphere_screen_avx512() {
 #endif
   return nullptr;
 }
-SphereGatherFn sphere_gather_avx512() {
+SphereGatheredKernelFn sphere_kernel_gathered_avx512() {
 #if GRAINS_LANES_AVX2
-  if (std::strcmp(lane_copy().name, "avx512") == 0) return isa_avx512::gather_lanes;
+  if (std::strcmp(lane_copy().name, "avx512") == 0) return isa_avx512::hertz_mindlin_lanes_gathered;
 #endif
   return nullptr;
 }

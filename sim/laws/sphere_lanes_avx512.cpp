@@ -6,4 +6,5 @@
 #error "sphere_lanes_avx512.cpp must be compiled with -mavx512f"
 #endif
 #define GRAINS_LANES_512_WANTED 1
+#define GRAINS_LANES_GATHERED 1  // also the kernel that gathers the motion (sphere_lanes_screen.hpp)
 #include "sim/laws/sphere_lanes.inc"

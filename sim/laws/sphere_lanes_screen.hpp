@@ -1,6 +1,7 @@
 #pragma once
 // The two list passes of the sphere lanes (sphere_lanes_stage.cpp) eight
-// entries per instruction, for processors with AVX-512F (issue 26: the pair
+// entries per instruction, the second fused into the kernel, for processors
+// with AVX-512F (issue 26: the pair
 // kernel near its limit). Chosen at run time beside the kernel's AVX-512
 // copy; GRAINS_SIMD=baseline, =avx2 or =scalar keeps the scalar passes.
 //
@@ -56,13 +57,16 @@ struct SphereScreenFields {
 /// will read (scenes larger than the cache).
 using SphereScreenFn = int (*)(const SphereScreenFields& in, SphereContactBatch& b, int n, std::size_t& i,
                                std::uint32_t& k, std::size_t row_end, bool prefetch);
-/// The second pass for lanes [0, n), one material, no frozen grains: the
-/// relative velocity, both spins, the spring, R* and m* into b.
-using SphereGatherFn = void (*)(const SphereScreenFields& in, SphereContactBatch& b, int n);
+/// The kernel (sphere_lanes.hpp) for lanes [0, b.count rounded up to eight)
+/// with the second pass fused in: one material, no frozen grains; it gathers
+/// the relative velocity, both spins, the spring, R* and m* itself, so every
+/// lane up to the rounded count must hold a valid row, entry and partner in
+/// in.row_of, in.entry_of, in.partner_of.
+using SphereGatheredKernelFn = void (*)(const SphereScreenFields& in, SphereContactBatch& b);
 
-/// The AVX-512 passes, or null where the processor lacks AVX-512F, the build
+/// The AVX-512 pass and kernel, or null where the processor lacks AVX-512F, the build
 /// has no copy of them, or GRAINS_SIMD caps the instruction set below it.
 SphereScreenFn sphere_screen_avx512();
-SphereGatherFn sphere_gather_avx512();
+SphereGatheredKernelFn sphere_kernel_gathered_avx512();
 
 }  // namespace grains::sim

@@ -149,33 +149,4 @@ int screen_rows(const SphereScreenFields& in, SphereContactBatch& b, int n, std:
   return n;
 }
 
-void gather_lanes(const SphereScreenFields& in, SphereContactBatch& b, int n) {
-  const double* const v = in.v;
-  const double* const w = in.omega;
-  const double* const mass = in.mass;
-  const double* const history = in.history;
-  for (int l = 0; l < n; l += 8) {
-    const __mmask8 live = static_cast<__mmask8>(n - l >= 8 ? 0xff : (1u << (n - l)) - 1);
-    const __m512i i = load_index(in.row_of + l, live), j = load_index(in.partner_of + l, live);
-    const __m512i i3 = times3(i), j3 = times3(j), k3 = times3(load_index(in.entry_of + l, live));
-    _mm512_storeu_pd(b.vx + l, _mm512_sub_pd(gather(v, i3, live), gather(v, j3, live)));
-    _mm512_storeu_pd(b.vy + l, _mm512_sub_pd(gather(v + 1, i3, live), gather(v + 1, j3, live)));
-    _mm512_storeu_pd(b.vz + l, _mm512_sub_pd(gather(v + 2, i3, live), gather(v + 2, j3, live)));
-    _mm512_storeu_pd(b.wix + l, gather(w, i3, live));
-    _mm512_storeu_pd(b.wiy + l, gather(w + 1, i3, live));
-    _mm512_storeu_pd(b.wiz + l, gather(w + 2, i3, live));
-    _mm512_storeu_pd(b.wjx + l, gather(w, j3, live));
-    _mm512_storeu_pd(b.wjy + l, gather(w + 1, j3, live));
-    _mm512_storeu_pd(b.wjz + l, gather(w + 2, j3, live));
-    _mm512_storeu_pd(b.hx + l, gather(history, k3, live));
-    _mm512_storeu_pd(b.hy + l, gather(history + 1, k3, live));
-    _mm512_storeu_pd(b.hz + l, gather(history + 2, k3, live));
-    // R* = ri rj / (ri + rj), m* = mi mj / (mi + mj), as the list computes them.
-    const __m512d ri = _mm512_loadu_pd(b.ri + l), rj = _mm512_loadu_pd(b.rj + l);
-    _mm512_storeu_pd(b.R + l, _mm512_div_pd(_mm512_mul_pd(ri, rj), _mm512_add_pd(ri, rj)));
-    const __m512d mi = gather(mass, i, live), mj = gather(mass, j, live);
-    _mm512_storeu_pd(b.m + l, _mm512_div_pd(_mm512_mul_pd(mi, mj), _mm512_add_pd(mi, mj)));
-  }
-}
-
 }  // namespace grains::sim::isa_avx512

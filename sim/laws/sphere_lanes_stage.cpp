@@ -76,11 +76,12 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
   int n = 0;  // lanes filled
   b.dt = s.clock.dt;
   // The list passes eight entries at a time where the processor has
-  // AVX-512F (sphere_lanes_screen.hpp); the second one with one material
-  // and no frozen grains only (else the scalar one below).
+  // AVX-512F (sphere_lanes_screen.hpp); the second one, fused into the
+  // kernel, with one material and no frozen grains only (else the scalar
+  // one below).
   static_assert(sizeof(Vec3) == 3 * sizeof(double));
   const SphereScreenFn screen = sphere_screen_avx512();
-  const SphereGatherFn gather = one_material && !frozen ? sphere_gather_avx512() : nullptr;
+  const SphereGatheredKernelFn gathered = one_material && !frozen ? sphere_kernel_gathered_avx512() : nullptr;
   auto doubles = [](const Vec3* a) { return reinterpret_cast<const double*>(a); };
   const SphereScreenFields in{row_start,         partner,   nl.partner.size(),        may_touch, history, doubles(x),
                               radius,            doubles(v), doubles(w),              mass,      doubles(p.f.data()),
@@ -93,9 +94,7 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
   auto flush = [&]() __attribute__((always_inline)) {
     if (n == 0) return;
     const int m = n < kSize ? n : kSize;
-    if (gather) {
-      gather(in, b, m);
-    } else {
+    if (!gathered) {
       for (int l = 0; l < m; ++l) {
         const std::size_t i = row_of[l], k = entry_of[l], j = partner_of[l];
         const Vec3 dv = v[i] - v[j];
@@ -121,8 +120,14 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
         for (int l = 0; l < m; ++l) b.m[l] = mi[l] * mj[l] / (mi[l] + mj[l]);
     }
     b.count = m;
-    for (int l = m; l % SphereContactBatch::kPad != 0; ++l) copy_lane(b, m - 1, l);  // padding: a finite contact
-    hertz_mindlin_lanes(b);
+    for (int l = m; l % SphereContactBatch::kPad != 0; ++l) {  // padding: a finite contact
+      copy_lane(b, m - 1, l);
+      row_of[l] = row_of[m - 1], entry_of[l] = entry_of[m - 1], partner_of[l] = partner_of[m - 1];
+    }
+    if (gathered)
+      gathered(in, b);
+    else
+      hertz_mindlin_lanes(b);
     for (int l = 0; l < m; ++l) {
       double* h = history + static_cast<std::size_t>(entry_of[l]) * 3;
       h[0] = b.hx[l], h[1] = b.hy[l], h[2] = b.hz[l];

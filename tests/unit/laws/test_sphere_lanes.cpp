@@ -151,7 +151,7 @@ TEST(SphereLanes, ListPassesInAvx512WithTheKernelsAvx512Copy) {
   // under GRAINS_SIMD=avx2 or =baseline (the runs of CMakeLists.txt).
   const bool avx512 = std::string(sphere_lanes_instruction_set()) == "avx512";
   EXPECT_EQ(sphere_screen_avx512() != nullptr, avx512) << sphere_lanes_instruction_set();
-  EXPECT_EQ(sphere_gather_avx512() != nullptr, avx512) << sphere_lanes_instruction_set();
+  EXPECT_EQ(sphere_kernel_gathered_avx512() != nullptr, avx512) << sphere_lanes_instruction_set();
 #if defined(__x86_64__)
   const char* env = std::getenv("GRAINS_SIMD");
   if (!env && __builtin_cpu_supports("avx512f")) {
