@@ -4,9 +4,10 @@
 // sphere_lanes_avx512.cpp; the copy is chosen once, at run time, by the CPU
 // (GRAINS_SIMD=baseline or =avx2 caps it).
 #include "sim/laws/sphere_lanes.inc"
-#include "sim/laws/sphere_lanes_screen.hpp"
 
 #include <cstdlib>
+
+#include "sim/laws/sphere_lanes_screen.hpp"
 
 namespace grains::sim {
 

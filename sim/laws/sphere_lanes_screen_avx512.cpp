@@ -109,7 +109,8 @@ int screen_rows(const SphereScreenFields& in, SphereContactBatch& b, int n, std:
       const __m512d dy = _mm512_sub_pd(gather(x + 1, i3, live), gather(x + 1, j3, live));
       const __m512d dz = _mm512_sub_pd(gather(x + 2, i3, live), gather(x + 2, j3, live));
       const __m512d ri = gather(radius, row, live), rj = gather(radius, j, live);
-      const __m512d d2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
+      const __m512d d2 =
+          _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
       const __m512d rc = _mm512_add_pd(_mm512_add_pd(ri, rj), reach);
       const __mmask8 touch = _mm512_mask_cmp_pd_mask(live, d2, _mm512_mul_pd(rc, rc), _CMP_NGE_UQ);
       // may_touch: the bytes that change are written one by one (in a bed

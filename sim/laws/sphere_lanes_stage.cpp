@@ -83,9 +83,22 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
   const SphereScreenFn screen = sphere_screen_avx512();
   const SphereGatheredKernelFn gathered = one_material && !frozen ? sphere_kernel_gathered_avx512() : nullptr;
   auto doubles = [](const Vec3* a) { return reinterpret_cast<const double*>(a); };
-  const SphereScreenFields in{row_start,         partner,   nl.partner.size(),        may_touch, history, doubles(x),
-                              radius,            doubles(v), doubles(w),              mass,      doubles(p.f.data()),
-                              doubles(p.torque.data()), reach, row_of,                entry_of,  partner_of};
+  const SphereScreenFields in{row_start,
+                              partner,
+                              nl.partner.size(),
+                              may_touch,
+                              history,
+                              doubles(x),
+                              radius,
+                              doubles(v),
+                              doubles(w),
+                              mass,
+                              doubles(p.f.data()),
+                              doubles(p.torque.data()),
+                              reach,
+                              row_of,
+                              entry_of,
+                              partner_of};
   // (Inlined at both calls: a call would keep the lane count in memory, its
   // every increment a store and a load on the path of the next entry.)
   // A batch is computed kSize lanes at a time: the AVX-512 screen may have
