@@ -27,6 +27,9 @@ namespace {
 struct LaneCopy {
   const char* name;
   void (*kernel)(SphereContactBatch&);
+  // The AVX-512 list pass and gathered kernel go with the kernel's AVX-512 copy.
+  SphereScreenFn screen = nullptr;
+  SphereGatheredKernelFn gathered = nullptr;
 };
 
 const LaneCopy& lane_copy() {
@@ -37,7 +40,9 @@ const LaneCopy& lane_copy() {
     if (env && std::strcmp(env, "baseline") == 0) return baseline;
     __builtin_cpu_init();
     const bool cap_avx2 = env && std::strcmp(env, "avx2") == 0;
-    if (!cap_avx2 && __builtin_cpu_supports("avx512f")) return {"avx512", isa_avx512::hertz_mindlin_lanes_isa};
+    if (!cap_avx2 && __builtin_cpu_supports("avx512f"))
+      return {"avx512", isa_avx512::hertz_mindlin_lanes_isa, isa_avx512::screen_rows,
+              isa_avx512::hertz_mindlin_lanes_gathered};
     if (__builtin_cpu_supports("avx2")) return {"avx2", isa_avx::hertz_mindlin_lanes_isa};
 #endif
     return baseline;
@@ -56,18 +61,7 @@ bool sphere_lanes_enabled() {
 
 const char* sphere_lanes_instruction_set() { return lane_copy().name; }
 
-// The list passes in AVX-512 go with the kernel's AVX-512 copy.
-SphereScreenFn sphere_screen_avx512() {
-#if GRAINS_LANES_AVX2
-  if (std::strcmp(lane_copy().name, "avx512") == 0) return isa_avx512::screen_rows;
-#endif
-  return nullptr;
-}
-SphereGatheredKernelFn sphere_kernel_gathered_avx512() {
-#if GRAINS_LANES_AVX2
-  if (std::strcmp(lane_copy().name, "avx512") == 0) return isa_avx512::hertz_mindlin_lanes_gathered;
-#endif
-  return nullptr;
-}
+SphereScreenFn sphere_screen_avx512() { return lane_copy().screen; }
+SphereGatheredKernelFn sphere_kernel_gathered_avx512() { return lane_copy().gathered; }
 
 }  // namespace grains::sim

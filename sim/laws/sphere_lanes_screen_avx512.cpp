@@ -13,6 +13,7 @@
 
 #include <cstring>
 
+#include "sim/laws/avx512_index.hpp"
 #include "sim/laws/sphere_lanes_screen.hpp"
 
 namespace grains::sim::isa_avx512 {
@@ -22,17 +23,10 @@ namespace {
 using B = SphereContactBatch;
 static_assert(B::kPad == 8 && B::kRoom >= B::kSize + 8, "a pass stores eight lanes from any lane below kSize");
 
-// Eight 32-bit indices (masked: lanes past the mask read nothing, lanes 8-15
-// zero), and the same widened to 64 bits.
-inline __m512i load32(const std::uint32_t* p, __mmask8 m) {
-  return _mm512_maskz_loadu_epi32(static_cast<__mmask16>(m), p);
-}
-inline __m512i widen(__m512i v32) { return _mm512_maskz_cvtepu32_epi64(0xff, _mm512_castsi512_si256(v32)); }
-inline __m512i load_index(const std::uint32_t* p, __mmask8 m) { return widen(load32(p, m)); }
-inline __m512i times3(__m512i i) { return _mm512_add_epi64(_mm512_maskz_slli_epi64(0xff, i, 1), i); }
-inline __m512d gather(const double* base, __m512i index, __mmask8 m) {
-  return _mm512_mask_i64gather_pd(_mm512_setzero_pd(), m, index, base, 8);
-}
+using avx512_index::gather;
+using avx512_index::load32;
+using avx512_index::times3;
+using avx512_index::widen;
 // Stores the lanes of v that m selects, packed, at p (eight lanes written).
 inline void pack(double* p, __mmask8 m, __m512d v) { _mm512_storeu_pd(p, _mm512_maskz_compress_pd(m, v)); }
 inline void pack(std::uint32_t* p, __mmask8 m, __m512i v16) {

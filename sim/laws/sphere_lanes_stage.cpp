@@ -34,9 +34,10 @@ void copy_lane(SphereContactBatch& b, int from, int to) {
 // quarter of the entries in a dense bed do not touch, in no pattern); the
 // second gathers the motion, constants and springs of the kept lanes.
 // (Gathering everything in the first pass, for every entry, measured 3 %
-// slower on the 10^4 bed: bench/RESULTS.md, 2026-11-29.) With AVX-512F both
-// passes run eight entries at a time in sphere_lanes_screen_avx512.cpp.
-// (bench/RESULTS.md, 2026-12-02: the pair stage 24 % faster on the 10^4 bed.)
+// slower on the 10^4 bed: bench/RESULTS.md, 2026-11-29.) With AVX-512F the
+// first pass runs eight entries at a time (sphere_lanes_screen_avx512.cpp)
+// and the second is fused into the kernel (bench/RESULTS.md, 2026-12-02:
+// with the kernel's own change, the pair stage in half the time on the 10^4 bed).
 //
 // Every field is read through a pointer taken before the loops, apply is a
 // copy (a lambda holding its target pointers) and the lane count a local:
@@ -72,8 +73,8 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
     std::fill_n(b.tdr, kRoom, pp.tangential_damping_ratio), std::fill_n(b.mu, kRoom, pp.friction);
   }
   alignas(32) std::uint32_t row_of[kRoom], entry_of[kRoom], partner_of[kRoom];
-  alignas(64) double mi[kRoom], mj[kRoom];
-  int n = 0;  // lanes filled
+  alignas(64) double mi[kSize], mj[kSize];  // (the scalar second pass: at most kSize lanes)
+  int n = 0;                                // lanes filled
   b.dt = s.clock.dt;
   // The list passes eight entries at a time where the processor has
   // AVX-512F (sphere_lanes_screen.hpp); the second one, fused into the
@@ -133,7 +134,8 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
         for (int l = 0; l < m; ++l) b.m[l] = mi[l] * mj[l] / (mi[l] + mj[l]);
     }
     b.count = m;
-    for (int l = m; l % SphereContactBatch::kPad != 0; ++l) {  // padding: a finite contact
+    for (int l = m; l % SphereContactBatch::kPad != 0;
+         ++l) {  // padding: a finite contact (the gathered kernel reads its indices too)
       copy_lane(b, m - 1, l);
       row_of[l] = row_of[m - 1], entry_of[l] = entry_of[m - 1], partner_of[l] = partner_of[m - 1];
     }
