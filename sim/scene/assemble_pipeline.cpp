@@ -87,31 +87,39 @@ void add_contact_law(Pipeline& p, const SceneNeeds& n, const std::string& normal
 }
 
 template <bool Rot, bool Clumps = false>
-void add_clear(Pipeline& p, bool gravity) {
+void add_clear(Pipeline& p, bool gravity, std::shared_ptr<ForceStart> start = nullptr) {
   if (gravity)
-    p.add(std::make_unique<ClearForces<Rot, true, Clumps>>());
+    p.add(std::make_unique<ClearForces<Rot, true, Clumps>>(std::move(start)));
   else
-    p.add(std::make_unique<ClearForces<Rot, false, Clumps>>());
+    p.add(std::make_unique<ClearForces<Rot, false, Clumps>>(std::move(start)));
 }
 
+// `start_in_drift`: the drift starts the owned particles' forces (ForceStart:
+// without clumps and with nothing between drift and force phase that
+// changes a mass, radius growth).
 template <bool Rot, bool Clumps>
-void add_integrator(Pipeline& p, bool gravity) {
+void add_integrator(Pipeline& p, bool gravity, bool start_in_drift) {
   auto waiting = std::make_shared<WaitingKick>();  // the kick left to the next drift
-  p.add(std::make_unique<VerletDrift<Rot, Clumps>>(waiting));
-  add_clear<Rot, Clumps>(p, gravity);
+  std::shared_ptr<ForceStart> start;
+  if (!Clumps && start_in_drift) {
+    start = std::make_shared<ForceStart>();
+    start->gravity = gravity;
+  }
+  p.add(std::make_unique<VerletDrift<Rot, Clumps>>(waiting, start));
+  add_clear<Rot, Clumps>(p, gravity, start);
   p.add(std::make_unique<VerletKick<Rot, Clumps>>(waiting));
 }
 
 template <bool Clumps>
-void add_integrators(Pipeline& p, const SceneNeeds& n) {
+void add_integrators(Pipeline& p, const SceneNeeds& n, bool start_in_drift) {
   if (n.ellipsoids) {
     p.add(std::make_unique<RigidBodyDrift>());
     add_clear<true, Clumps>(p, n.gravity);
     p.add(std::make_unique<RigidBodyKick>());
   } else if (n.rotation) {
-    add_integrator<true, Clumps>(p, n.gravity);
+    add_integrator<true, Clumps>(p, n.gravity, start_in_drift);
   } else {
-    add_integrator<false, Clumps>(p, n.gravity);
+    add_integrator<false, Clumps>(p, n.gravity, start_in_drift);
   }
   // The bodies after the particles in each phase: they place their balls last.
   if constexpr (Clumps) {
@@ -166,9 +174,9 @@ Pipeline assemble_pipeline(const Scene& s, const SceneConfig& c) {
   if (c.integrator == Integrator::Arkode)
     add_arkode(p, s, c, n);
   else if (n.clumps)
-    add_integrators<true>(p, n);
+    add_integrators<true>(p, n, false);
   else
-    add_integrators<false>(p, n);
+    add_integrators<false>(p, n, !c.growth.enabled);
   if (n.moving_walls && c.integrator == Integrator::Verlet) p.add(std::make_unique<MoveWalls>());
   if (s.walls.controlled()) p.add(std::make_unique<ControlWalls>());
   if (s.domain.shear.servo()) p.add(std::make_unique<ShearPressure>());

@@ -196,9 +196,9 @@ TEST(ClumpDynamics, SphereScenePipelineIsUnchanged) {
   };
   auto spheres = scene("{type: sphere}");
   const std::vector<std::string> expected = {
-      "drift: verlet.kick_drift+rotation",
+      "drift: verlet.kick_drift+rotation+force_start",
       "neighbor: neighbor.verlet_list(skin trigger)",
-      "force: force.clear+torque+gravity",
+      "force: force.clear+torque+gravity(owned: in the drift)",
       "force: force.pair_contacts<hertz+tangential:mindlin+rolling:none+cohesion:none>",
       "force: force.walls<hertz+tangential:mindlin+rolling:none+cohesion:none>",
       "kick: verlet.kick+rotation"};

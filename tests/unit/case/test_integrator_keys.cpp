@@ -26,7 +26,7 @@ time:
 TEST(IntegratorKeys, VerletIsTheDefault) {
   auto s = make_simulation(parse_case(with_time("  dt: 1.0e-6\n  end: 1.0e-5\n"), "case.yaml"));
   EXPECT_EQ(s.c.scene.integrator, sim::Integrator::Verlet);
-  EXPECT_EQ(s.pipeline.stage_names().front(), "drift: verlet.kick_drift+rotation");
+  EXPECT_EQ(s.pipeline.stage_names().front(), "drift: verlet.kick_drift+rotation+force_start");
   EXPECT_EQ(s.scene.neighbors.history_size(), 3);
 }
 

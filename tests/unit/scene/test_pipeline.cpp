@@ -22,7 +22,8 @@ time: {dt: 1.0e-6, end: 1.0e-5}
 TEST(Pipeline, FrictionlessWalllessSceneHasOnlyWhatItNeeds) {
   auto s = make_simulation(parse_case(base(0, 0, ""), "t.yaml"));
   const std::vector<std::string> stages{
-      "drift: verlet.kick_drift", "neighbor: neighbor.verlet_list(skin trigger)", "force: force.clear",
+      "drift: verlet.kick_drift+force_start", "neighbor: neighbor.verlet_list(skin trigger)",
+      "force: force.clear(owned: in the drift)",
       "force: force.pair_contacts<hertz+tangential:none+rolling:none+cohesion:none>", "kick: verlet.kick"};
   EXPECT_EQ(s.pipeline.stage_names(), stages);
   const std::vector<std::string> fields{"id", "position", "velocity", "force", "radius", "mass", "inv_mass", "material", "shape"};
@@ -39,9 +40,9 @@ walls:
   - {type: cylinder, base: [0.005, 0.005, 0], radius: 0.005, height: 0.01, material: a}
 )"),
                                       "t.yaml"));
-  const std::vector<std::string> stages{"drift: verlet.kick_drift+rotation",
+  const std::vector<std::string> stages{"drift: verlet.kick_drift+rotation+force_start",
                                         "neighbor: neighbor.verlet_list(skin trigger)",
-                                        "force: force.clear+torque+gravity",
+                                        "force: force.clear+torque+gravity(owned: in the drift)",
                                         "force: force.pair_contacts<hertz+tangential:mindlin+rolling:none+cohesion:none>",
                                         "force: force.walls<hertz+tangential:mindlin+rolling:none+cohesion:none>",
                                         "kick: verlet.kick+rotation"};
@@ -49,6 +50,41 @@ walls:
   EXPECT_EQ(s.scene.neighbors.history_size(), 3);
   EXPECT_EQ(s.scene.particles.wall_history_size(), 6);  // 2 walls x 3
   EXPECT_EQ(s.scene.particles.omega.size(), s.scene.particles.size());
+}
+
+// The drift starts the owned particles' forces (F = m g, T = 0) in its pass
+// and the clear then skips them; a force phase without a drift before it
+// (done not set) clears them itself.
+TEST(Pipeline, DriftStartsTheForcesAndTheClearCoversAForcePhaseWithoutIt) {
+  auto s = make_simulation(parse_case(base(0.5, 0, "gravity: [0, 0, -9.81]\n"), "t.yaml"));
+  auto& p = s.scene.particles;
+  const auto& stages = s.pipeline.stages();
+  ASSERT_EQ(stages[0]->name(), "verlet.kick_drift+rotation+force_start");
+  ASSERT_EQ(stages[2]->name(), "force.clear+torque+gravity(owned: in the drift)");
+  auto scramble = [&p] {
+    for (std::size_t i = 0; i < p.size(); ++i) p.f[i] = sim::Vec3(1, 2, 3), p.torque[i] = sim::Vec3(4, 5, 6);
+  };
+  auto started = [&p, &s] {
+    for (std::size_t i = 0; i < p.n_owned(); ++i)
+      if (p.f[i] != sim::Vec3(p.mass[i] * s.scene.gravity) || p.torque[i] != sim::Vec3::Zero()) return false;
+    return true;
+  };
+  ASSERT_GT(p.n_owned(), 0u);
+  scramble();
+  stages[2]->run(s.scene);  // no drift before: the clear does it all
+  EXPECT_TRUE(started());
+  scramble();
+  stages[0]->run(s.scene);  // the drift starts them
+  EXPECT_TRUE(started());
+  scramble();
+  stages[2]->run(s.scene);  // the drift did it: owned particles left alone
+  EXPECT_EQ(p.f[0], sim::Vec3(1, 2, 3));
+  stages[2]->run(s.scene);  // a second force phase: the clear again
+  EXPECT_TRUE(started());
+  // Radius growth changes masses in the drift phase: the clear keeps its pass.
+  auto g = make_simulation(parse_case(
+      base(0.5, 0, "gravity: [0, 0, -9.81]\nradius_growth: {rate: 0.1, target_overlap: 1.0e-4}\n"), "t.yaml"));
+  EXPECT_EQ(g.pipeline.stages()[0]->name(), "verlet.kick_drift+rotation");
 }
 
 TEST(Pipeline, RollingAndCohesionSlots) {
