@@ -14,6 +14,8 @@ namespace grains::sim {
 #if GRAINS_LANES_AVX2
 namespace isa_avx {
 void hertz_mindlin_lanes_isa(SphereContactBatch&);
+int screen_rows(const SphereScreenFields&, SphereContactBatch&, int, std::size_t&, std::uint32_t&, std::size_t, bool);
+void hertz_mindlin_lanes_gathered(const SphereScreenFields&, SphereContactBatch&);
 }  // namespace isa_avx
 namespace isa_avx512 {
 void hertz_mindlin_lanes_isa(SphereContactBatch&);
@@ -27,7 +29,7 @@ namespace {
 struct LaneCopy {
   const char* name;
   void (*kernel)(SphereContactBatch&);
-  // The AVX-512 list pass and gathered kernel go with the kernel's AVX-512 copy.
+  // The list pass and gathered kernel of the same instruction set (AVX-512 or AVX2).
   SphereScreenFn screen = nullptr;
   SphereGatheredKernelFn gathered = nullptr;
 };
@@ -43,7 +45,8 @@ const LaneCopy& lane_copy() {
     if (!cap_avx2 && __builtin_cpu_supports("avx512f"))
       return {"avx512", isa_avx512::hertz_mindlin_lanes_isa, isa_avx512::screen_rows,
               isa_avx512::hertz_mindlin_lanes_gathered};
-    if (__builtin_cpu_supports("avx2")) return {"avx2", isa_avx::hertz_mindlin_lanes_isa};
+    if (__builtin_cpu_supports("avx2"))
+      return {"avx2", isa_avx::hertz_mindlin_lanes_isa, isa_avx::screen_rows, isa_avx::hertz_mindlin_lanes_gathered};
 #endif
     return baseline;
   }();
@@ -61,7 +64,7 @@ bool sphere_lanes_enabled() {
 
 const char* sphere_lanes_instruction_set() { return lane_copy().name; }
 
-SphereScreenFn sphere_screen_avx512() { return lane_copy().screen; }
-SphereGatheredKernelFn sphere_kernel_gathered_avx512() { return lane_copy().gathered; }
+SphereScreenFn sphere_screen() { return lane_copy().screen; }
+SphereGatheredKernelFn sphere_kernel_gathered() { return lane_copy().gathered; }
 
 }  // namespace grains::sim

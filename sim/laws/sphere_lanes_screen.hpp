@@ -1,22 +1,23 @@
 #pragma once
 // The two list passes of the sphere lanes (sphere_lanes_stage.cpp) eight
 // entries per instruction, the second fused into the kernel, for processors
-// with AVX-512F (issue 26: the pair
-// kernel near its limit). Chosen at run time beside the kernel's AVX-512
-// copy; GRAINS_SIMD=baseline, =avx2 or =scalar keeps the scalar passes.
+// with AVX-512F, and four per instruction with AVX2 (issue 26: the pair
+// kernel near its limit). Chosen at run time beside the kernel's copy of the
+// same instruction set; GRAINS_SIMD=baseline or =scalar keeps the scalar
+// passes.
 //
 // The scalar passes store, for every list entry, nine values into the batch
 // and, for every touching one, fourteen more, one at a time: on the 10^4 bed
 // they were about half of the pair stage's time (perf, 2026-12-02). Here an
 // entry's partner fields come in by gathers, the touching entries are
-// packed into the next free lanes by a compress, and eight lanes are stored
-// by one instruction. The arithmetic is the scalar passes', operation by
+// packed into the next free lanes by a compress (AVX2: a permutation from a
+// table), and eight (four) lanes are stored by one instruction. The arithmetic is the scalar passes', operation by
 // operation in their order (d = x_i - x_j, |d|^2 = (dx dx + dy dy) + dz dz,
 // r_c = (r_i + r_j) + reach, touching when !(|d|^2 >= r_c^2); v_i - v_j;
 // R* and m* as the list computes them), so the bits are the same
 // (tests/unit/laws/test_sphere_lanes.cpp runs both and compares).
 //
-// Plain pointers only: this header and its AVX-512 translation unit see no
+// Plain pointers only: this header and its AVX-512 and AVX2 units see no
 // Eigen and no inline function of the project that another unit compiles
 // for the baseline (the linker keeps one copy of an inline function).
 #include <cstddef>
@@ -64,9 +65,11 @@ using SphereScreenFn = int (*)(const SphereScreenFields& in, SphereContactBatch&
 /// in.row_of, in.entry_of, in.partner_of.
 using SphereGatheredKernelFn = void (*)(const SphereScreenFields& in, SphereContactBatch& b);
 
-/// The AVX-512 pass and kernel, or null where the processor lacks AVX-512F, the build
-/// has no copy of them, or GRAINS_SIMD caps the instruction set below it.
-SphereScreenFn sphere_screen_avx512();
-SphereGatheredKernelFn sphere_kernel_gathered_avx512();
+/// The pass and kernel of the kernel's copy (AVX-512, or AVX2 with four
+/// entries per instruction: sphere_lanes_screen_avx2.cpp), or null where the
+/// processor has neither, the build has no copy of them, or GRAINS_SIMD caps
+/// the instruction set below AVX2.
+SphereScreenFn sphere_screen();
+SphereGatheredKernelFn sphere_kernel_gathered();
 
 }  // namespace grains::sim

@@ -37,7 +37,8 @@ void copy_lane(SphereContactBatch& b, int from, int to) {
 // slower on the 10^4 bed: bench/RESULTS.md, 2026-11-29.) With AVX-512F the
 // first pass runs eight entries at a time (sphere_lanes_screen_avx512.cpp)
 // and the second is fused into the kernel (bench/RESULTS.md, 2026-12-02:
-// with the kernel's own change, the pair stage in half the time on the 10^4 bed).
+// with the kernel's own change, the pair stage in half the time on the 10^4
+// bed); with AVX2 likewise, four entries at a time (2026-12-02).
 //
 // Every field is read through a pointer taken before the loops, apply is a
 // copy (a lambda holding its target pointers) and the lane count a local:
@@ -77,12 +78,12 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
   int n = 0;                                // lanes filled
   b.dt = s.clock.dt;
   // The list passes eight entries at a time where the processor has
-  // AVX-512F (sphere_lanes_screen.hpp); the second one, fused into the
-  // kernel, with one material and no frozen grains only (else the scalar
-  // one below).
+  // AVX-512F, four with AVX2 (sphere_lanes_screen.hpp); the second one,
+  // fused into the kernel, with one material and no frozen grains only
+  // (else the scalar one below).
   static_assert(sizeof(Vec3) == 3 * sizeof(double));
-  const SphereScreenFn screen = sphere_screen_avx512();
-  const SphereGatheredKernelFn gathered = one_material && !frozen ? sphere_kernel_gathered_avx512() : nullptr;
+  const SphereScreenFn screen = sphere_screen();
+  const SphereGatheredKernelFn gathered = one_material && !frozen ? sphere_kernel_gathered() : nullptr;
   auto doubles = [](const Vec3* a) { return reinterpret_cast<const double*>(a); };
   const SphereScreenFields in{row_start,
                               partner,

@@ -49,7 +49,7 @@ Scene cluster(int n, std::uint64_t seed, bool deterministic, Kind kind = Kind::T
   for (int k = 0; k < n; ++k) {
     // Wide: every 40th sphere six times as large, so that some rows of the
     // list hold far more entries than a lane group or a window of the
-    // AVX-512 first pass (sphere_lanes_screen_avx512.cpp).
+    // vector first pass (sphere_lanes_screen_avx512.cpp, _avx2.cpp).
     const double r = 0.005 * (1 + 0.3 * std::abs(u(rng))) * (kind == Kind::Wide && k % 40 == 0 ? 6 : 1);
     const auto i = s.particles.add(k, side * Vec3(u(rng), u(rng), u(rng)), Vec3(u(rng), u(rng), u(rng)), r,
                                    2500 * 4.0 / 3.0 * M_PI * r * r * r, kind == Kind::OneMaterial ? 0 : k % 2);
@@ -145,17 +145,22 @@ TEST(SphereLanes, FrozenGrainsEqualTheScalarLoopBitwise) {
   compare(true, Kind::Frozen);
 }
 
-TEST(SphereLanes, ListPassesInAvx512WithTheKernelsAvx512Copy) {
-  // The comparisons above cover the AVX-512 list passes only where they run:
-  // with the kernel's AVX-512 copy (this run on such a processor), never
-  // under GRAINS_SIMD=avx2 or =baseline (the runs of CMakeLists.txt).
-  const bool avx512 = std::string(sphere_lanes_instruction_set()) == "avx512";
-  EXPECT_EQ(sphere_screen_avx512() != nullptr, avx512) << sphere_lanes_instruction_set();
-  EXPECT_EQ(sphere_kernel_gathered_avx512() != nullptr, avx512) << sphere_lanes_instruction_set();
+TEST(SphereLanes, ListPassesWithTheKernelsAvx512OrAvx2Copy) {
+  // The comparisons above cover the vector list passes only where they run:
+  // with the kernel's AVX-512 copy (this run on such a processor) or its
+  // AVX2 copy (the run under GRAINS_SIMD=avx2 of CMakeLists.txt), never
+  // under GRAINS_SIMD=baseline.
+  const std::string copy = sphere_lanes_instruction_set();
+  const bool vector = copy == "avx512" || copy == "avx2";
+  EXPECT_EQ(sphere_screen() != nullptr, vector) << copy;
+  EXPECT_EQ(sphere_kernel_gathered() != nullptr, vector) << copy;
 #if defined(__x86_64__)
   const char* env = std::getenv("GRAINS_SIMD");
   if (!env && __builtin_cpu_supports("avx512f")) {
-    EXPECT_TRUE(avx512) << "this processor has AVX-512F";
+    EXPECT_EQ(copy, "avx512") << "this processor has AVX-512F";
+  }
+  if (env && std::string(env) == "avx2" && __builtin_cpu_supports("avx2")) {
+    EXPECT_EQ(copy, "avx2") << "GRAINS_SIMD=avx2 on a processor with AVX2";
   }
 #endif
 }

@@ -26,7 +26,8 @@ TEST(Pipeline, FrictionlessWalllessSceneHasOnlyWhatItNeeds) {
       "force: force.clear(owned: in the drift)",
       "force: force.pair_contacts<hertz+tangential:none+rolling:none+cohesion:none>", "kick: verlet.kick"};
   EXPECT_EQ(s.pipeline.stage_names(), stages);
-  const std::vector<std::string> fields{"id", "position", "velocity", "force", "radius", "mass", "inv_mass", "material", "shape"};
+  const std::vector<std::string> fields{"id",   "position", "velocity", "force", "radius",
+                                        "mass", "inv_mass", "material", "shape"};
   EXPECT_EQ(s.scene.particles.field_names(), fields);
   EXPECT_EQ(s.scene.neighbors.history_size(), 0);
   EXPECT_TRUE(s.scene.particles.omega.empty());
@@ -40,12 +41,13 @@ walls:
   - {type: cylinder, base: [0.005, 0.005, 0], radius: 0.005, height: 0.01, material: a}
 )"),
                                       "t.yaml"));
-  const std::vector<std::string> stages{"drift: verlet.kick_drift+rotation+force_start",
-                                        "neighbor: neighbor.verlet_list(skin trigger)",
-                                        "force: force.clear+torque+gravity(owned: in the drift)",
-                                        "force: force.pair_contacts<hertz+tangential:mindlin+rolling:none+cohesion:none>",
-                                        "force: force.walls<hertz+tangential:mindlin+rolling:none+cohesion:none>",
-                                        "kick: verlet.kick+rotation"};
+  const std::vector<std::string> stages{
+      "drift: verlet.kick_drift+rotation+force_start",
+      "neighbor: neighbor.verlet_list(skin trigger)",
+      "force: force.clear+torque+gravity(owned: in the drift)",
+      "force: force.pair_contacts<hertz+tangential:mindlin+rolling:none+cohesion:none>",
+      "force: force.walls<hertz+tangential:mindlin+rolling:none+cohesion:none>",
+      "kick: verlet.kick+rotation"};
   EXPECT_EQ(s.pipeline.stage_names(), stages);
   EXPECT_EQ(s.scene.neighbors.history_size(), 3);
   EXPECT_EQ(s.scene.particles.wall_history_size(), 6);  // 2 walls x 3
@@ -89,10 +91,12 @@ TEST(Pipeline, DriftStartsTheForcesAndTheClearCoversAForcePhaseWithoutIt) {
 
 TEST(Pipeline, RollingAndCohesionSlots) {
   auto s = make_simulation(parse_case(base(0.5, 0.1, "contact: {cohesion: sjkr}\n"), "t.yaml"));
-  EXPECT_EQ(s.pipeline.stage_names()[3], "force: force.pair_contacts<hertz+tangential:mindlin+rolling:epsd+cohesion:sjkr>");
+  EXPECT_EQ(s.pipeline.stage_names()[3],
+            "force: force.pair_contacts<hertz+tangential:mindlin+rolling:epsd+cohesion:sjkr>");
   EXPECT_EQ(s.scene.neighbors.history_size(), 6);
   auto n = make_simulation(parse_case(base(0.5, 0.1, "contact: {tangential: none, rolling: none}\n"), "t.yaml"));
-  EXPECT_EQ(n.pipeline.stage_names()[3], "force: force.pair_contacts<hertz+tangential:none+rolling:none+cohesion:none>");
+  EXPECT_EQ(n.pipeline.stage_names()[3],
+            "force: force.pair_contacts<hertz+tangential:none+rolling:none+cohesion:none>");
 }
 
 TEST(Pipeline, OutputStagesExistOnlyWhenAsked) {
