@@ -1,6 +1,5 @@
 #pragma once
 // Force-phase stages that do not involve contacts.
-#include <algorithm>
 #include <memory>
 
 #include "sim/scene/stage.hpp"
@@ -53,7 +52,7 @@ class ClearForces final : public Stage {
       } else {
         for (std::size_t i = from; i < n; ++i) p.f[i] = p.mass[i] * g;
       }
-      for (std::size_t i = std::max(from, n); i < p.size(); ++i) p.f[i].setZero();
+      for (std::size_t i = n; i < p.size(); ++i) p.f[i].setZero();  // the ghosts
     } else {
       for (std::size_t i = from; i < p.size(); ++i) p.f[i].setZero();
     }
