@@ -17,6 +17,10 @@
 // R* and m* as the list computes them), so the bits are the same
 // (tests/unit/laws/test_sphere_lanes.cpp runs both and compares).
 //
+// The first pass is written once, in sphere_lanes_screen.inc, which each
+// instruction set's unit includes with its own few operations (the lane
+// count, gathers, masks, the packing).
+//
 // Plain pointers only: this header and its AVX-512 and AVX2 units see no
 // Eigen and no inline function of the project that another unit compiles
 // for the baseline (the linker keeps one copy of an inline function).
