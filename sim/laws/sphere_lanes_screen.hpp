@@ -9,7 +9,8 @@
 // The scalar passes store, for every list entry, nine values into the batch
 // and, for every touching one, fourteen more, one at a time: on the 10^4 bed
 // they were about half of the pair stage's time (perf, 2026-12-02). Here an
-// entry's partner fields come in by gathers, the touching entries are
+// entry's partner fields come in by gathers (AVX2: loads of three doubles and a
+// transpose, faster there than its gathers), the touching entries are
 // packed into the next free lanes by a compress (AVX2: a permutation from a
 // table), and eight (four) lanes are stored by one instruction. The arithmetic is the scalar passes', operation by
 // operation in their order (d = x_i - x_j, |d|^2 = (dx dx + dy dy) + dz dz,

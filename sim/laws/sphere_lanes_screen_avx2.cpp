@@ -52,7 +52,17 @@ struct Ops {
   static I32 load32(const std::uint32_t* p, unsigned m) { return avx2_index::load32(p, m); }
   static I64 widen(I32 v) { return avx2_index::widen(v); }
   static I64 times3(I64 v) { return avx2_index::times3(v); }
-  static D gather(const double* base, I64 index, Live on) { return avx2_index::gather(base, index, on); }
+  // Four loads where the processor's gathers are slow (Zen 3); a lane past
+  // count repeats lane 0's item.
+  static D gather1(const double* base, const std::uint32_t* idx, std::uint32_t count, I64, Live) {
+    const std::uint32_t i0 = idx[0];
+    return _mm256_setr_pd(base[i0], base[count > 1 ? idx[1] : i0], base[count > 2 ? idx[2] : i0],
+                          base[count > 3 ? idx[3] : i0]);
+  }
+  static void gather3(const double* base, const std::uint32_t* idx, std::uint32_t count, I64, Live, D& a, D& b, D& c) {
+    const std::uint32_t i0 = idx[0];
+    avx2_index::load3(base, i0, count > 1 ? idx[1] : i0, count > 2 ? idx[2] : i0, count > 3 ? idx[3] : i0, a, b, c);
+  }
   static D set1(double a) { return _mm256_set1_pd(a); }
   static D add(D a, D c) { return _mm256_add_pd(a, c); }
   static D sub(D a, D c) { return _mm256_sub_pd(a, c); }

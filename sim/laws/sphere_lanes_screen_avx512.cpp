@@ -33,7 +33,13 @@ struct Ops {
   static I32 load32(const std::uint32_t* p, unsigned m) { return avx512_index::load32(p, static_cast<__mmask8>(m)); }
   static I64 widen(I32 v) { return avx512_index::widen(v); }
   static I64 times3(I64 v) { return avx512_index::times3(v); }
-  static D gather(const double* base, I64 index, Live on) { return avx512_index::gather(base, index, on); }
+  static D gather1(const double* base, const std::uint32_t*, std::uint32_t, I64 index, Live on) {
+    return avx512_index::gather(base, index, on);
+  }
+  static void gather3(const double* base, const std::uint32_t*, std::uint32_t, I64 index3, Live on, D& a, D& b, D& c) {
+    a = avx512_index::gather(base, index3, on), b = avx512_index::gather(base + 1, index3, on),
+    c = avx512_index::gather(base + 2, index3, on);
+  }
   static D set1(double a) { return _mm512_set1_pd(a); }
   static D add(D a, D c) { return _mm512_add_pd(a, c); }
   static D sub(D a, D c) { return _mm512_sub_pd(a, c); }
