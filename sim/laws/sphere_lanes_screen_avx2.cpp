@@ -76,8 +76,10 @@ struct Ops {
             static_cast<unsigned>((bytes & 0xff000000u) != 0) << 3) &
            m;
   }
+  // Eight slots per store: a row of up to eight entries (nearly all) takes one.
+  static constexpr std::uint32_t kRowStore = 8;
   static void store_rows(std::uint32_t* p, std::uint32_t r) {
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm_set1_epi32(static_cast<int>(r)));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), _mm256_set1_epi32(static_cast<int>(r)));
   }
   static I32 iota_from(std::uint32_t q) {
     return _mm_add_epi32(_mm_set1_epi32(static_cast<int>(q)), _mm_setr_epi32(0, 1, 2, 3));

@@ -52,6 +52,7 @@ struct Ops {
                                        _mm512_maskz_cvtepu8_epi64(0xff, _mm_cvtsi64_si128(static_cast<long long>(bytes))),
                                        _mm512_set1_epi64(0xff));
   }
+  static constexpr std::uint32_t kRowStore = 8;
   static void store_rows(std::uint32_t* p, std::uint32_t r) {
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), _mm256_set1_epi32(static_cast<int>(r)));
   }
