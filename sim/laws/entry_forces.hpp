@@ -8,6 +8,7 @@
 // of particles, and there are no write races.
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "sim/neighbor/neighbor_list.hpp"
@@ -22,14 +23,43 @@ namespace grains::sim {
 /// The gather then adds whole sides, with no sign or choice per entry
 /// (a + (-f) is a - f to the bit). Without rotation a side is the force
 /// alone. An entry not in contact holds zeros.
+///
+/// The compact layout (the sphere lanes, resize_compact): entry k's sides
+/// are record slot[k]'s, records 1, 2, ... holding the entries in contact
+/// as they come and record 0 zeros, so that a step writes the records of
+/// the contacts and four bytes for every other entry (not the whole array).
+/// The gather adds the same values in the same order either way.
 struct EntryForces {
   template <bool Rotation>
   static constexpr std::size_t kSide = Rotation ? 6 : 3;
   std::vector<double> v;
+  std::vector<std::uint32_t> slot;  // the compact layout: entry -> record
+  bool compact = false;
 
   template <bool Rotation>
   void resize(std::size_t entries) {
+    compact = false;
     v.resize(entries * 2 * kSide<Rotation>);
+  }
+  /// The compact layout for `entries` entries: room for a record each and
+  /// the zero record. Every entry's slot must then be written (put or
+  /// clear_slots) before the gather.
+  template <bool Rotation>
+  void resize_compact(std::size_t entries) {
+    compact = true;
+    v.resize((entries + 1) * 2 * kSide<Rotation>);
+    std::fill_n(v.begin(), 2 * kSide<Rotation>, 0.0);
+    slot.resize(entries);
+  }
+  /// Entries [k0, k1) not in contact (until put), in the compact layout.
+  void clear_slots(std::size_t k0, std::size_t k1) {
+    std::fill(slot.begin() + static_cast<std::ptrdiff_t>(k0), slot.begin() + static_cast<std::ptrdiff_t>(k1), 0u);
+  }
+  /// Entry k in contact, its sides into record rec (> 0), in the compact layout.
+  template <bool Rotation>
+  void put(std::uint32_t rec, std::size_t k, const Vec3& f, const Vec3& ti, const Vec3& tj) {
+    slot[k] = rec;
+    set<Rotation>(rec, f, ti, tj);
   }
   template <bool Rotation>
   void set(std::size_t k, const Vec3& f, const Vec3& ti, const Vec3& tj) {
@@ -47,11 +77,13 @@ struct EntryForces {
               v.begin() + static_cast<std::ptrdiff_t>(k1 * 2 * kSide<Rotation>), 0.0);
   }
   /// Bytes held (summary.json: ordered_sums_entry_forces).
-  double bytes() const { return static_cast<double>(v.size() * sizeof(double)); }
+  double bytes() const {
+    return static_cast<double>(v.size() * sizeof(double) + slot.size() * sizeof(std::uint32_t));
+  }
   /// The force of entry k on its row particle.
   template <bool Rotation>
   Vec3 force(std::size_t k) const {
-    const double* q = v.data() + k * 2 * kSide<Rotation>;
+    const double* q = v.data() + (compact ? std::size_t{slot[k]} : k) * 2 * kSide<Rotation>;
     return {q[0], q[1], q[2]};
   }
 };
@@ -65,6 +97,22 @@ inline void gather_entry_forces(ParticleStore& p, const NeighborList& nl, const 
   const double* const v = e.v.data();
   const std::uint32_t* const gather_start = nl.gather_start.data();
   const std::uint32_t* const gather_entry = nl.gather_entry.data();
+  if (e.compact) {
+    const std::uint32_t* const slot = e.slot.data();
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      double a[S] = {};
+      for (auto g = gather_start[i]; g < gather_start[i + 1]; ++g) {
+        const std::uint32_t code = gather_entry[g];  // 2 k + side
+        const double* const q = v + (2 * std::size_t{slot[code >> 1]} + (code & 1u)) * S;
+        for (std::size_t c = 0; c < S; ++c) a[c] += q[c];
+      }
+      p.f[i] += Vec3(a[0], a[1], a[2]);
+      if constexpr (Rotation) p.torque[i] += Vec3(a[3], a[4], a[5]);
+    }
+    return;
+  }
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);

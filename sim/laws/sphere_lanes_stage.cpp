@@ -226,9 +226,14 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
 template <bool Prefetch>
 __attribute__((noinline)) void deferred_rows(Scene& s, SphereContactBatch& b, EntryForces& e, std::size_t lo,
                                              std::size_t hi) {
-  e.zero<true>(s.neighbors.row_start[lo], s.neighbors.row_start[hi]);  // entries not touching stay zero
-  auto put = [&e](int l, std::size_t, std::size_t, std::uint32_t k, const SphereContactBatch& bb) {
-    e.set<true>(k, Vec3(bb.fx[l], bb.fy[l], bb.fz[l]), Vec3(bb.tix[l], bb.tiy[l], bb.tiz[l]),
+  // The compact layout: the rows' entries not touching read the zero record;
+  // the touching ones get records from the rows' first entry + 1 on, in
+  // list order (a chunk of rows holds at most as many contacts as entries).
+  const std::uint32_t k0 = s.neighbors.row_start[lo];
+  e.clear_slots(k0, s.neighbors.row_start[hi]);
+  auto put = [&e, rec = k0 + 1](int l, std::size_t, std::size_t, std::uint32_t k,
+                                const SphereContactBatch& bb) mutable {
+    e.put<true>(rec++, k, Vec3(bb.fx[l], bb.fy[l], bb.fz[l]), Vec3(bb.tix[l], bb.tiy[l], bb.tiz[l]),
                 Vec3(bb.tjx[l], bb.tjy[l], bb.tjz[l]));
   };
   lanes_rows<Prefetch>(s, b, lo, hi, put);
@@ -257,7 +262,7 @@ void run_lanes(Scene& s, SphereContactBatch& batch, EntryForces& e) {
     else
       lanes_rows<false>(s, batch, 0, rows, add);
   } else {
-    e.resize<true>(nl.partner.size());
+    e.resize_compact<true>(nl.partner.size());
     const auto n_rows = static_cast<std::ptrdiff_t>(rows);
     constexpr std::ptrdiff_t chunk = 256;
     const bool prefetch = p.size() >= kPrefetchFrom;

@@ -428,10 +428,11 @@ void setup_parallel(Scene& s, const SceneConfig& c, double rmax) {
   s.deterministic = c.parallel.deterministic.value_or(comm.parallel()) || omp_get_max_threads() > 1;
   s.neighbors.set_gather(s.deterministic);
   // Ordered sums hold, per list entry, both sides' force (and torques) and
-  // the gather's order: about 4 list entries per grain in a dense bed, as
-  // in the estimate above (docs/memory.md).
+  // the gather's order (and, in the sphere lanes' compact layout, each
+  // entry's record: 4 bytes, counted for every kind), about 4 list entries
+  // per grain in a dense bed, as in the estimate above (docs/memory.md).
   if (s.deterministic)
-    s.memory.list_bytes += 4.0 * (2 * (s.particles.fields().has(Field::Torque) ? 6 : 3) * 8.0 + 2 * 4) + 4;
+    s.memory.list_bytes += 4.0 * (2 * (s.particles.fields().has(Field::Torque) ? 6 : 3) * 8.0 + 2 * 4 + 4) + 4;
   if (!comm.parallel() && !s.domain.any_periodic()) return;
   // Ghost cut-off: the largest pair cut-off, plus how far a clump's ball may
   // lie from the centre of mass that decides its rank.
