@@ -200,6 +200,35 @@ void Comm::sendrecv_known(const std::vector<char>& send, [[maybe_unused]] int de
   if (src >= 0) std::copy(send.begin(), send.end(), recv.begin());
 }
 
+void Comm::sendrecv_known(std::vector<Transfer>& transfers) const {
+#ifdef GRAINS_HAVE_MPI
+  if (parallel()) {
+    std::vector<MPI_Request> req;
+    req.reserve(2 * transfers.size());
+    for (auto& t : transfers)
+      if (!(t.dest == rank_ && t.src == rank_) && t.src >= 0) {
+        req.emplace_back();
+        check(MPI_Irecv(t.recv->data(), static_cast<int>(t.recv->size()), MPI_BYTE, t.src, t.tag, MPI_COMM_WORLD,
+                        &req.back()),
+              "Irecv");
+      }
+    for (auto& t : transfers)
+      if (!(t.dest == rank_ && t.src == rank_) && t.dest >= 0) {
+        req.emplace_back();
+        check(MPI_Isend(t.send->data(), static_cast<int>(t.send->size()), MPI_BYTE, t.dest, t.tag, MPI_COMM_WORLD,
+                        &req.back()),
+              "Isend");
+      }
+    for (auto& t : transfers)
+      if (t.dest == rank_ && t.src == rank_) std::copy(t.send->begin(), t.send->end(), t.recv->begin());
+    check(MPI_Waitall(static_cast<int>(req.size()), req.data(), MPI_STATUSES_IGNORE), "Waitall");
+    return;
+  }
+#endif
+  for (auto& t : transfers)
+    if (t.src >= 0) std::copy(t.send->begin(), t.send->end(), t.recv->begin());
+}
+
 std::vector<std::vector<char>> Comm::alltoallv(const std::vector<std::vector<char>>& send) const {
   std::vector<std::vector<char>> recv(static_cast<std::size_t>(size_));
 #ifdef GRAINS_HAVE_MPI

@@ -43,6 +43,19 @@ class Comm {
   void sendrecv(const std::vector<char>& send, int dest, std::vector<char>& recv, int src, int tag) const;
   /// As sendrecv, when the receiver knows the size already (recv is sized).
   void sendrecv_known(const std::vector<char>& send, int dest, std::vector<char>& recv, int src, int tag) const;
+  /// One of several sendrecv_known transfers that travel at once.
+  struct Transfer {
+    const std::vector<char>* send;
+    int dest;
+    std::vector<char>* recv;  // sized by the caller
+    int src;
+    int tag;
+  };
+  /// The transfers all posted before any is waited for (non-blocking sends
+  /// and receives), so that messages to the same or different ranks overlap
+  /// instead of each waiting its turn. A transfer to and from this rank is a
+  /// copy, as in sendrecv_known.
+  void sendrecv_known(std::vector<Transfer>& transfers) const;
   /// Sends send[r] to every rank r; returns what each rank sent to us.
   std::vector<std::vector<char>> alltoallv(const std::vector<std::vector<char>>& send) const;
   /// Gathers every rank's bytes on rank 0 (others get an empty result).

@@ -339,29 +339,42 @@ void Exchange::set_domain(const Domain& d) {
 
 void Exchange::update_ghosts(ParticleStore& p, double time) {
   const std::size_t kb = p.kinematic_bytes();
-  int tag = 100;
   const int f = domain_.shear.flow;
-  for (const auto& sw : swaps_) {
-    const bool local = sw.src >= 0 && sw.send.size() == sw.recv_count &&
-                       (!comm_.parallel() || (sw.dest == comm_.rank() && sw.src == comm_.rank()));
-    if (local) {
-      copy_kinematics(p, sw.send, sw.recv_start);
-    } else {
-      sbuf_.clear();
-      for (const auto i : sw.send) p.pack_kinematics(i, Vec3::Zero(), sbuf_);
-      rbuf_.resize(sw.recv_count * kb);
-      comm_.sendrecv_known(sbuf_, sw.dest, rbuf_, sw.src, tag);
-      const char* q = rbuf_.data();
-      for (std::size_t k = 0; k < sw.recv_count; ++k) q += p.unpack_kinematics(sw.recv_start + k, q);
+  // build_ghosts makes two swaps per dimension (towards -1, then +1), both
+  // chosen from the grains there before either (owned and the earlier
+  // dimensions' ghosts): the pair's messages travel together.
+  for (std::size_t a = 0; a < swaps_.size(); a += 2) {
+    const std::size_t b = std::min(a + 2, swaps_.size());
+    transfers_.clear();
+    for (std::size_t k = a; k < b; ++k) {
+      const auto& sw = swaps_[k];
+      const bool local = sw.src >= 0 && sw.send.size() == sw.recv_count &&
+                         (!comm_.parallel() || (sw.dest == comm_.rank() && sw.src == comm_.rank()));
+      if (local) {
+        copy_kinematics(p, sw.send, sw.recv_start);
+        continue;
+      }
+      auto& sb = sbufs_[k - a];
+      auto& rb = rbufs_[k - a];
+      p.pack_kinematics(sw.send, sb);
+      rb.resize(sw.recv_count * kb);
+      transfers_.push_back({&sb, sw.dest, &rb, sw.src, static_cast<int>(100 + 2 * k)});
     }
-    tag += 2;
-    const bool shift = sw.recv_shift.squaredNorm() > 0;
-    for (std::size_t k = 0; k < sw.recv_count; ++k) {
-      const std::size_t g = sw.recv_start + k;
-      if (shift) p.x[g] += sw.recv_shift;
-      if (sw.shear_side != 0) {
-        p.x[g][f] = sheared(sw, p.x[g][f], sw.flow_wrap[k], time);
-        p.v[g][f] += sw.shear_side * domain_.shear_speed();
+    if (!transfers_.empty()) comm_.sendrecv_known(transfers_);
+    for (const auto& t : transfers_) {
+      const auto& sw = swaps_[a + static_cast<std::size_t>(t.recv - rbufs_.data())];
+      p.unpack_kinematics(sw.recv_start, sw.recv_count, t.recv->data());
+    }
+    for (std::size_t k = a; k < b; ++k) {
+      const auto& sw = swaps_[k];
+      const bool shift = sw.recv_shift.squaredNorm() > 0;
+      for (std::size_t n = 0; n < sw.recv_count; ++n) {
+        const std::size_t g = sw.recv_start + n;
+        if (shift) p.x[g] += sw.recv_shift;
+        if (sw.shear_side != 0) {
+          p.x[g][f] = sheared(sw, p.x[g][f], sw.flow_wrap[n], time);
+          p.v[g][f] += sw.shear_side * domain_.shear_speed();
+        }
       }
     }
   }

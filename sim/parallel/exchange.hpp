@@ -121,6 +121,8 @@ class Exchange {
   bool keep_cuts_once_ = false;  // the next migrate() does not rebalance (restored cuts)
   std::vector<Swap> swaps_;
   std::vector<char> sbuf_, rbuf_;
+  std::array<std::vector<char>, 2> sbufs_, rbufs_;  // a dimension's two ghost updates
+  std::vector<Comm::Transfer> transfers_;
   Stats stats_;
 };
 

@@ -167,41 +167,36 @@ std::size_t ParticleStore::kinematic_bytes() const {
   return b;
 }
 
-namespace {
-template <class T>
-void put(std::vector<char>& buf, const T& v) {
-  const auto* c = reinterpret_cast<const char*>(&v);
-  buf.insert(buf.end(), c, c + sizeof(T));
-}
-template <class T>
-const char* get(const char* rec, T& v) {
-  std::memcpy(reinterpret_cast<char*>(&v), rec, sizeof(T));
-  return rec + sizeof(T);
-}
-}  // namespace
-
-void ParticleStore::pack_kinematics(std::size_t i, const Vec3& shift, std::vector<char>& buf) const {
+void ParticleStore::pack_kinematics(const std::vector<std::uint32_t>& idx, std::vector<char>& buf) const {
+  buf.resize(idx.size() * kinematic_bytes());
+  char* out = buf.data();
   declare_fields([&](const FieldInfo& f, auto member, auto) {
     if (!f.kinematic) return;
     const auto& vec = this->*member;
-    if constexpr (std::is_same_v<std::decay_t<decltype(vec)>, std::vector<Vec3>>) {
-      if (member == &ParticleStore::x) {  // the position of the image
-        put(buf, Vec3(x[i] + shift));
-        return;
+    using T = typename std::decay_t<decltype(vec)>::value_type;
+    const auto w = static_cast<std::size_t>(f.width);
+    for (const auto i : idx)
+      for (std::size_t c = 0; c < w; ++c) {
+        T v = vec[i * w + c];
+        // The image's position is x + shift, with no shift here: + 0 as the
+        // build's record and a local copy give it (-0 becomes +0).
+        if constexpr (std::is_same_v<T, Vec3>)
+          if (member == &ParticleStore::x) v += Vec3::Zero();
+        std::memcpy(out, &v, sizeof(T));
+        out += sizeof(T);
       }
-    }
-    for (int c = 0; c < f.width; ++c) put(buf, vec[i * static_cast<std::size_t>(f.width) + c]);
   });
 }
 
-std::size_t ParticleStore::unpack_kinematics(std::size_t i, const char* rec) {
-  const char* r = rec;
+void ParticleStore::unpack_kinematics(std::size_t start, std::size_t count, const char* buf) {
   declare_fields([&](const FieldInfo& f, auto member, auto) {
     if (!f.kinematic) return;
     auto& vec = this->*member;
-    for (int c = 0; c < f.width; ++c) r = get(r, vec[i * static_cast<std::size_t>(f.width) + c]);
+    using T = typename std::decay_t<decltype(vec)>::value_type;
+    const auto w = static_cast<std::size_t>(f.width);
+    std::memcpy(static_cast<void*>(vec.data() + start * w), buf, sizeof(T) * w * count);
+    buf += sizeof(T) * w * count;
   });
-  return static_cast<std::size_t>(r - rec);
 }
 
 }  // namespace grains::sim

@@ -105,9 +105,13 @@ class ParticleStore {
   /// exist, angular velocity, orientation and shape form): what a ghost
   /// update sends.
   std::size_t kinematic_bytes() const;
-  void pack_kinematics(std::size_t i, const Vec3& shift, std::vector<char>& buf) const;
-  /// Overwrites the kinematic fields of particle i from a record; returns the bytes read.
-  std::size_t unpack_kinematics(std::size_t i, const char* rec);
+  /// The kinematic fields of particles idx[0], idx[1], ... into buf (sized
+  /// here to idx.size() * kinematic_bytes()), field by field: each field's
+  /// values for all of them, then the next field's.
+  void pack_kinematics(const std::vector<std::uint32_t>& idx, std::vector<char>& buf) const;
+  /// Overwrites the kinematic fields of particles start .. start + count - 1
+  /// from what pack_kinematics wrote for count particles.
+  void unpack_kinematics(std::size_t start, std::size_t count, const char* buf);
 
   // ---- core fields ----
   std::vector<std::int64_t> id;
