@@ -186,41 +186,29 @@ void Comm::sendrecv(const std::vector<char>& send, [[maybe_unused]] int dest, st
   else recv = send;
 }
 
-void Comm::sendrecv_known(const std::vector<char>& send, [[maybe_unused]] int dest, std::vector<char>& recv,
-                          [[maybe_unused]] int src, [[maybe_unused]] int tag) const {
-#ifdef GRAINS_HAVE_MPI
-  if (parallel() && !(dest == rank_ && src == rank_)) {
-    check(MPI_Sendrecv(send.data(), static_cast<int>(send.size()), MPI_BYTE, dest < 0 ? MPI_PROC_NULL : dest, tag,
-                       recv.data(), static_cast<int>(recv.size()), MPI_BYTE, src < 0 ? MPI_PROC_NULL : src, tag,
-                       MPI_COMM_WORLD, MPI_STATUS_IGNORE),
-          "Sendrecv");
-    return;
-  }
-#endif
-  if (src >= 0) std::copy(send.begin(), send.end(), recv.begin());
-}
-
 void Comm::sendrecv_known(std::vector<Transfer>& transfers) const {
 #ifdef GRAINS_HAVE_MPI
   if (parallel()) {
-    std::vector<MPI_Request> req;
-    req.reserve(2 * transfers.size());
-    for (auto& t : transfers)
-      if (!(t.dest == rank_ && t.src == rank_) && t.src >= 0) {
+    static thread_local std::vector<MPI_Request> req;  // every step: no allocation after the first
+    req.clear();
+    for (auto& t : transfers) {
+      if (t.dest == rank_ && t.src == rank_) {
+        std::copy(t.send->begin(), t.send->end(), t.recv->begin());
+        continue;
+      }
+      if (t.src >= 0) {
         req.emplace_back();
         check(MPI_Irecv(t.recv->data(), static_cast<int>(t.recv->size()), MPI_BYTE, t.src, t.tag, MPI_COMM_WORLD,
                         &req.back()),
               "Irecv");
       }
-    for (auto& t : transfers)
-      if (!(t.dest == rank_ && t.src == rank_) && t.dest >= 0) {
+      if (t.dest >= 0) {
         req.emplace_back();
         check(MPI_Isend(t.send->data(), static_cast<int>(t.send->size()), MPI_BYTE, t.dest, t.tag, MPI_COMM_WORLD,
                         &req.back()),
               "Isend");
       }
-    for (auto& t : transfers)
-      if (t.dest == rank_ && t.src == rank_) std::copy(t.send->begin(), t.send->end(), t.recv->begin());
+    }
     check(MPI_Waitall(static_cast<int>(req.size()), req.data(), MPI_STATUSES_IGNORE), "Waitall");
     return;
   }

@@ -41,9 +41,8 @@ class Comm {
   /// Sends `send` to rank dest and receives from rank src (sizes are
   /// exchanged first). dest/src may be this rank.
   void sendrecv(const std::vector<char>& send, int dest, std::vector<char>& recv, int src, int tag) const;
-  /// As sendrecv, when the receiver knows the size already (recv is sized).
-  void sendrecv_known(const std::vector<char>& send, int dest, std::vector<char>& recv, int src, int tag) const;
-  /// One of several sendrecv_known transfers that travel at once.
+  /// A send to rank dest and a receive from rank src of a size the receiver
+  /// knows (recv is sized); dest/src may be this rank, or -1 for none.
   struct Transfer {
     const std::vector<char>* send;
     int dest;
@@ -54,7 +53,7 @@ class Comm {
   /// The transfers all posted before any is waited for (non-blocking sends
   /// and receives), so that messages to the same or different ranks overlap
   /// instead of each waiting its turn. A transfer to and from this rank is a
-  /// copy, as in sendrecv_known.
+  /// copy.
   void sendrecv_known(std::vector<Transfer>& transfers) const;
   /// Sends send[r] to every rank r; returns what each rank sent to us.
   std::vector<std::vector<char>> alltoallv(const std::vector<std::vector<char>>& send) const;

@@ -362,7 +362,7 @@ void Exchange::update_ghosts(ParticleStore& p, double time) {
     }
     if (!transfers_.empty()) comm_.sendrecv_known(transfers_);
     for (const auto& t : transfers_) {
-      const auto& sw = swaps_[a + static_cast<std::size_t>(t.recv - rbufs_.data())];
+      const auto& sw = swaps_[a + static_cast<std::size_t>(t.recv - rbufs_.data())];  // rbufs_[k - a] is swap k's
       p.unpack_kinematics(sw.recv_start, sw.recv_count, t.recv->data());
     }
     for (std::size_t k = a; k < b; ++k) {

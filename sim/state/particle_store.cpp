@@ -175,13 +175,15 @@ void ParticleStore::pack_kinematics(const std::vector<std::uint32_t>& idx, std::
     const auto& vec = this->*member;
     using T = typename std::decay_t<decltype(vec)>::value_type;
     const auto w = static_cast<std::size_t>(f.width);
+    // The image's position is x + shift, with no shift here: + 0 as the
+    // build's record and a local copy give it (-0 becomes +0).
+    bool position = false;
+    if constexpr (std::is_same_v<T, Vec3>) position = member == &ParticleStore::x;
     for (const auto i : idx)
       for (std::size_t c = 0; c < w; ++c) {
         T v = vec[i * w + c];
-        // The image's position is x + shift, with no shift here: + 0 as the
-        // build's record and a local copy give it (-0 becomes +0).
         if constexpr (std::is_same_v<T, Vec3>)
-          if (member == &ParticleStore::x) v += Vec3::Zero();
+          if (position) v += Vec3::Zero();
         std::memcpy(out, &v, sizeof(T));
         out += sizeof(T);
       }
