@@ -88,13 +88,6 @@ struct EntryForces {
   }
 };
 
-/// From this many particles (owned and ghosts) the compact gather
-/// prefetches: a grain's entries then lie in rows up to a layer of cells
-/// away and their records far apart in memory, and without prefetches the
-/// gather waits on each (bench/RESULTS.md, 2026-12-06: 73-100 ns per grain
-/// in a bed of 10^6, about 10 in one of 10^4 that the cache holds).
-inline constexpr std::size_t kGatherPrefetchFrom = std::size_t{1} << 15;
-
 namespace detail {
 /// The compact layout's gather (see gather_entry_forces). With Prefetch,
 /// the slot of the entry kSlotAhead places ahead and the record of the one
@@ -135,11 +128,17 @@ inline void gather_compact(ParticleStore& p, const NeighborList& nl, const Entry
 }  // namespace detail
 
 /// Adds each owned particle's entries to its force (and torque), in the
-/// list's gather order.
+/// list's gather order. `prefetch` (the compact layout only; the caller's
+/// choice, by the particle count from which it prefetches its own reads):
+/// in a large bed a grain's entries lie in rows up to a layer of cells away
+/// and their records far apart in memory, and without prefetches the gather
+/// waits on each (bench/RESULTS.md, 2026-12-06: 73-100 ns per grain in a bed
+/// of 10^6, about 10 in one of 10^4 that the cache holds).
 template <bool Rotation>
-inline void gather_entry_forces(ParticleStore& p, const NeighborList& nl, const EntryForces& e) {
+inline void gather_entry_forces(ParticleStore& p, const NeighborList& nl, const EntryForces& e,
+                                bool prefetch = false) {
   if (e.compact) {
-    if (p.size() >= kGatherPrefetchFrom)
+    if (prefetch)
       detail::gather_compact<Rotation, true>(p, nl, e);
     else
       detail::gather_compact<Rotation, false>(p, nl, e);

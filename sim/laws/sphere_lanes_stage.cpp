@@ -13,8 +13,9 @@ namespace grains::sim {
 namespace {
 
 // From this many particles (owned and ghosts: about 6 MB of the fields a
-// pair reads) the lanes prefetch the partners' fields; below, the cache
-// holds them and the prefetches only cost instructions.
+// pair reads) the lanes prefetch the partners' fields, and the ordered
+// sums' gather its records; below, the cache holds them and the prefetches
+// only cost instructions.
 constexpr std::size_t kPrefetchFrom = std::size_t{1} << 15;
 
 void copy_lane(SphereContactBatch& b, int from, int to) {
@@ -278,7 +279,7 @@ void run_lanes(Scene& s, SphereContactBatch& batch, EntryForces& e) {
           deferred_rows<false>(s, b, e, lo, hi);
       }
     }
-    gather_entry_forces<true>(p, nl, e);
+    gather_entry_forces<true>(p, nl, e, prefetch);
     if (s.stress_probe) probe_entries<true>(*s.stress_probe, p, nl, e);
   }
 }
