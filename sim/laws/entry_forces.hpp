@@ -10,6 +10,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <vector>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "sim/neighbor/neighbor_list.hpp"
 #include "sim/state/particle_store.hpp"
@@ -60,6 +63,39 @@ struct EntryForces {
   void put(std::uint32_t rec, std::size_t k, const Vec3& f, const Vec3& ti, const Vec3& tj) {
     slot[k] = rec;
     set<Rotation>(rec, f, ti, tj);
+  }
+  /// put, with the record's stores past the cache (non-temporal): for a bed
+  /// whose records leave the cache before the gather reads them, the stores
+  /// then do not first read the lines they fill (ordered sums in beds of
+  /// 10^5 and 10^6 grains, serial and on 2 ranks: bench/RESULTS.md,
+  /// 2026-12-07). The same values.
+  /// stream_fence() must follow before any thread reads the records.
+  template <bool Rotation>
+  void put_stream(std::uint32_t rec, std::size_t k, const Vec3& f, const Vec3& ti, const Vec3& tj) {
+#if defined(__SSE2__)
+    static_assert(__STDCPP_DEFAULT_NEW_ALIGNMENT__ >= 16 && 2 * kSide<Rotation> % 2 == 0,
+                  "records on 16-byte boundaries for the paired stores");
+    slot[k] = rec;
+    double* const q = v.data() + std::size_t{rec} * 2 * kSide<Rotation>;
+    // _mm_set_pd(hi, lo): the layout of set(), two doubles at a time.
+    if constexpr (Rotation) {
+      _mm_stream_pd(q, _mm_set_pd(f.y(), f.x())), _mm_stream_pd(q + 2, _mm_set_pd(ti.x(), f.z()));
+      _mm_stream_pd(q + 4, _mm_set_pd(ti.z(), ti.y())), _mm_stream_pd(q + 6, _mm_set_pd(-f.y(), -f.x()));
+      _mm_stream_pd(q + 8, _mm_set_pd(tj.x(), -f.z())), _mm_stream_pd(q + 10, _mm_set_pd(tj.z(), tj.y()));
+    } else {
+      _mm_stream_pd(q, _mm_set_pd(f.y(), f.x())), _mm_stream_pd(q + 2, _mm_set_pd(-f.x(), f.z()));
+      _mm_stream_pd(q + 4, _mm_set_pd(-f.z(), -f.y()));
+    }
+#else
+    put<Rotation>(rec, k, f, ti, tj);
+#endif
+  }
+  /// Orders this thread's put_stream stores before its later ones (and so
+  /// before an OpenMP barrier's).
+  static void stream_fence() {
+#if defined(__SSE2__)
+    _mm_sfence();
+#endif
   }
   template <bool Rotation>
   void set(std::size_t k, const Vec3& f, const Vec3& ti, const Vec3& tj) {

@@ -232,12 +232,18 @@ __attribute__((noinline)) void deferred_rows(Scene& s, SphereContactBatch& b, En
   // list order (a chunk of rows holds at most as many contacts as entries).
   const std::uint32_t k0 = s.neighbors.row_start[lo];
   e.clear_slots(k0, s.neighbors.row_start[hi]);
+  // Where the lanes prefetch (a bed the cache does not hold) the records go
+  // past the cache: the gather reads them only after every row.
   auto put = [&e, rec = k0 + 1](int l, std::size_t, std::size_t, std::uint32_t k,
                                 const SphereContactBatch& bb) mutable {
-    e.put<true>(rec++, k, Vec3(bb.fx[l], bb.fy[l], bb.fz[l]), Vec3(bb.tix[l], bb.tiy[l], bb.tiz[l]),
-                Vec3(bb.tjx[l], bb.tjy[l], bb.tjz[l]));
+    const Vec3 f(bb.fx[l], bb.fy[l], bb.fz[l]), ti(bb.tix[l], bb.tiy[l], bb.tiz[l]), tj(bb.tjx[l], bb.tjy[l], bb.tjz[l]);
+    if constexpr (Prefetch)
+      e.put_stream<true>(rec++, k, f, ti, tj);
+    else
+      e.put<true>(rec++, k, f, ti, tj);
   };
   lanes_rows<Prefetch>(s, b, lo, hi, put);
+  if constexpr (Prefetch) EntryForces::stream_fence();
 }
 
 // Serial: forces added in list order, as run_direct's. Deterministic (and
