@@ -73,19 +73,15 @@ struct EntryForces {
   template <bool Rotation>
   void put_stream(std::uint32_t rec, std::size_t k, const Vec3& f, const Vec3& ti, const Vec3& tj) {
 #if defined(__SSE2__)
-    static_assert(__STDCPP_DEFAULT_NEW_ALIGNMENT__ >= 16 && 2 * kSide<Rotation> % 2 == 0,
-                  "records on 16-byte boundaries for the paired stores");
+    static_assert(Rotation, "written for the sphere lanes' records (with rotation), the only ones streamed");
+    static_assert(__STDCPP_DEFAULT_NEW_ALIGNMENT__ >= 16, "records (12 doubles) on 16-byte boundaries");
     slot[k] = rec;
     double* const q = v.data() + std::size_t{rec} * 2 * kSide<Rotation>;
-    // _mm_set_pd(hi, lo): the layout of set(), two doubles at a time.
-    if constexpr (Rotation) {
-      _mm_stream_pd(q, _mm_set_pd(f.y(), f.x())), _mm_stream_pd(q + 2, _mm_set_pd(ti.x(), f.z()));
-      _mm_stream_pd(q + 4, _mm_set_pd(ti.z(), ti.y())), _mm_stream_pd(q + 6, _mm_set_pd(-f.y(), -f.x()));
-      _mm_stream_pd(q + 8, _mm_set_pd(tj.x(), -f.z())), _mm_stream_pd(q + 10, _mm_set_pd(tj.z(), tj.y()));
-    } else {
-      _mm_stream_pd(q, _mm_set_pd(f.y(), f.x())), _mm_stream_pd(q + 2, _mm_set_pd(-f.x(), f.z()));
-      _mm_stream_pd(q + 4, _mm_set_pd(-f.z(), -f.y()));
-    }
+    // set()'s layout, two doubles at a time (_mm_set_pd(hi, lo)); the lanes
+    // test compares the ordered sums it gives with the scalar loop's bitwise.
+    _mm_stream_pd(q, _mm_set_pd(f.y(), f.x())), _mm_stream_pd(q + 2, _mm_set_pd(ti.x(), f.z()));
+    _mm_stream_pd(q + 4, _mm_set_pd(ti.z(), ti.y())), _mm_stream_pd(q + 6, _mm_set_pd(-f.y(), -f.x()));
+    _mm_stream_pd(q + 8, _mm_set_pd(tj.x(), -f.z())), _mm_stream_pd(q + 10, _mm_set_pd(tj.z(), tj.y()));
 #else
     put<Rotation>(rec, k, f, ti, tj);
 #endif
