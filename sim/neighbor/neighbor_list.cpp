@@ -143,6 +143,36 @@ inline void consider_pair(const ParticleStore& p, std::size_t n_own, std::size_t
   }
 }
 
+// consider_pair for one grain i against the grains order[b0 .. b1) at once:
+// the same test, pair by pair, but without a branch on its outcome (in a
+// pour about one candidate in five is kept, unpredictably) and with i's
+// fields held: each candidate is written at pi/pj[m] and m moves on only
+// when it is kept. pi and pj must have room for b1 - b0 more from m.
+template <bool Bodies, bool Ghosts, class Index, class Skin>
+inline std::size_t consider_row(const ParticleStore& p, std::size_t n_own, std::size_t i, const Index* order,
+                                std::size_t b0, std::size_t b1, Skin&& skin, std::uint32_t* pi, std::uint32_t* pj,
+                                std::size_t m) {
+  const Vec3 xi = p.x[i];
+  const double ri = p.radius[i];
+  const std::int64_t id_i = p.id[i];
+  const auto ui = static_cast<std::uint32_t>(i);
+  for (std::size_t b = b0; b < b1; ++b) {
+    const std::size_t j = order[b];
+    const double cut = ri + p.radius[j] + skin(i, j);
+    const double dx = xi[0] - p.x[j][0], dy = xi[1] - p.x[j][1], dz = xi[2] - p.x[j][2];
+    bool keep = dx * dx + dy * dy + dz * dz < cut * cut;  // (x_i - x_j).squaredNorm(), same order
+    const std::int64_t id_j = p.id[j];
+    if constexpr (Ghosts) keep = keep & !((i >= n_own) & (j >= n_own)) & (id_i != id_j);
+    if constexpr (Bodies) keep = keep & !((p.body[i] >= 0) & (p.body[i] == p.body[j]));
+    const auto uj = static_cast<std::uint32_t>(j);
+    const bool i_first = id_i < id_j;
+    pi[m] = i_first ? ui : uj;
+    pj[m] = i_first ? uj : ui;
+    m += keep;
+  }
+  return m;
+}
+
 }  // namespace
 
 template <bool Bodies, bool Ghosts>
@@ -299,25 +329,44 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   // Likewise ghost-ghost pairs are left out only when ghosts exist.
   const auto skin = [&](std::size_t i, std::size_t j) { return pair_skin(p, i, j) + reach_; };
   auto collect = [&](auto exclude_same_body, auto with_ghosts) {
+    // pi, pj grow by a small step past what is kept (within their capacity
+    // no new block): the pages they touch are those push_back would touch.
+    std::size_t kept = pi.size();
+    // The half stencil's 14 cells as 5 runs of particles: cells are in x-fastest
+    // order, so the cells cx - 1 .. cx + 1 of one (y, z) row hold one
+    // contiguous run (in a dense bed a cell holds one or two grains: a loop
+    // per cell would be mostly loop).
+    constexpr int kRows[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};  // (dy, dz) of the rows past the own one
     for (int cz = 0; cz < dims[2]; ++cz)
       for (int cy = 0; cy < dims[1]; ++cy)
         for (int cx = 0; cx < dims[0]; ++cx) {
           const std::size_t c = (static_cast<std::size_t>(cz) * dims[1] + cy) * dims[0] + cx;
-          for (int s = 0; s < 14; ++s) {
-            const int nx = cx + kHalfStencil[s][0], ny = cy + kHalfStencil[s][1], nz = cz + kHalfStencil[s][2];
-            if (nx < 0 || ny < 0 || nz < 0 || nx >= dims[0] || ny >= dims[1] || nz >= dims[2]) continue;
-            const std::size_t c2 = (static_cast<std::size_t>(nz) * dims[1] + ny) * dims[0] + nx;
-            for (auto a = cell_start[c]; a < cell_start[c + 1]; ++a) {
-              const std::size_t i = order[a];
-              const auto b0 = s == 0 ? a + 1 : cell_start[c2];
-              for (auto b = b0; b < cell_start[c2 + 1]; ++b) {
-                const std::size_t j = order[b];
-                consider_pair<decltype(exclude_same_body)::value, decltype(with_ghosts)::value>(p, n_own, i, j, skin,
-                                                                                                  pi, pj);
-              }
-            }
+          if (cell_start[c] == cell_start[c + 1]) continue;
+          const int x0 = cx > 0 ? cx - 1 : 0, x1 = cx + 1 < dims[0] ? cx + 1 : cx;
+          std::size_t run_lo[5], run_hi[5];
+          int runs = 0;
+          run_lo[runs] = cell_start[c], run_hi[runs] = cell_start[c + 1 + static_cast<std::size_t>(x1 - cx)], ++runs;  // own row
+          for (const auto& d : kRows) {
+            const int ny = cy + d[0], nz = cz + d[1];
+            if (ny < 0 || nz < 0 || ny >= dims[1] || nz >= dims[2]) continue;
+            const std::size_t row = (static_cast<std::size_t>(nz) * dims[1] + ny) * dims[0];
+            run_lo[runs] = cell_start[row + static_cast<std::size_t>(x0)];
+            run_hi[runs] = cell_start[row + static_cast<std::size_t>(x1) + 1];
+            if (run_lo[runs] < run_hi[runs]) ++runs;
+          }
+          std::size_t room = 0;
+          for (int u = 0; u < runs; ++u) room += run_hi[u] - run_lo[u];
+          for (auto a = cell_start[c]; a < cell_start[c + 1]; ++a) {
+            const std::size_t i = order[a];
+            run_lo[0] = a + 1;  // the own cell after a, then cell cx + 1
+            if (kept + room > pi.size()) pi.resize(kept + room + 1024), pj.resize(pi.size());
+            for (int u = 0; u < runs; ++u)
+              kept = consider_row<decltype(exclude_same_body)::value, decltype(with_ghosts)::value>(
+                  p, n_own, i, order.data(), run_lo[u], run_hi[u], skin, pi.data(), pj.data(), kept);
           }
         }
+    pi.resize(kept);
+    pj.resize(kept);
   };
   const bool bodies = p.fields().has(Field::Body), ghosts = n > n_own;
   double rmin = n > 0 ? p.radius[0] : 0, rmax = rmin;
