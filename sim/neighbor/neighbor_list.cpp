@@ -69,11 +69,6 @@ struct CellGrid {
   }
 };
 
-// The own cell and the 13 forward neighbour cells: each pair of cells once.
-constexpr int kHalfStencil[14][3] = {{0, 0, 0},  {1, 0, 0},  {-1, 1, 0}, {0, 1, 0},  {1, 1, 0},
-                                     {-1, -1, 1}, {0, -1, 1}, {1, -1, 1}, {-1, 0, 1}, {0, 0, 1},
-                                     {1, 0, 1},  {-1, 1, 1}, {0, 1, 1},  {1, 1, 1}};
-
 // The smallest skin of a pair among the first n particles: skin per grain f
 // (0: the one skin), radii less `growth` (their value at the build).
 double least_pair_skin(const ParticleStore& p, std::size_t n, double f, double skin, double growth) {
@@ -124,30 +119,14 @@ struct ClassGrid {
   }
 };
 
-// The pair test of a build: (i, j) goes into the candidate pairs (smaller
-// global id first) when it is within the cut-off r_i + r_j + skin(i, j).
-// Left out: two ghosts, a grain and its own image (Ghosts), two balls of one
-// clump (Bodies).
-template <bool Bodies, bool Ghosts, class Skin>
-inline void consider_pair(const ParticleStore& p, std::size_t n_own, std::size_t i, std::size_t j, Skin&& skin,
-                          std::vector<std::uint32_t>& pi, std::vector<std::uint32_t>& pj) {
-  if constexpr (Ghosts)
-    if ((i >= n_own && j >= n_own) || p.id[i] == p.id[j]) return;
-  if constexpr (Bodies)
-    if (p.body[i] >= 0 && p.body[i] == p.body[j]) return;
-  const double cut = p.radius[i] + p.radius[j] + skin(i, j);
-  if ((p.x[i] - p.x[j]).squaredNorm() < cut * cut) {
-    const bool i_first = p.id[i] < p.id[j];
-    pi.push_back(static_cast<std::uint32_t>(i_first ? i : j));
-    pj.push_back(static_cast<std::uint32_t>(i_first ? j : i));
-  }
-}
-
-// consider_pair for one grain i against the grains order[b0 .. b1) at once:
-// the same test, pair by pair, but without a branch on its outcome (in a
-// pour about one candidate in five is kept, unpredictably) and with i's
-// fields held: each candidate is written at pi/pj[m] and m moves on only
-// when it is kept. pi and pj must have room for b1 - b0 more from m.
+// The pair test of a build for one grain i against the grains order[b0 ..
+// b1): (i, j) goes into the candidate pairs (smaller global id first) when
+// it is within the cut-off r_i + r_j + skin(i, j). Left out: two ghosts, a
+// grain and its own image (Ghosts), two balls of one clump (Bodies). No
+// branch on the outcome (in a pour about one candidate in five is kept,
+// unpredictably), i's fields held: each candidate is written at pi/pj[m]
+// and m moves on only when it is kept. pi and pj must have room for b1 - b0
+// more from m. Returns the new m.
 template <bool Bodies, bool Ghosts, class Index, class Skin>
 inline std::size_t consider_row(const ParticleStore& p, std::size_t n_own, std::size_t i, const Index* order,
                                 std::size_t b0, std::size_t b1, Skin&& skin, std::uint32_t* pi, std::uint32_t* pj,
@@ -171,6 +150,40 @@ inline std::size_t consider_row(const ParticleStore& p, std::size_t n_own, std::
     m += keep;
   }
   return m;
+}
+
+// The half stencil of cell (cx, cy, cz), the own cell and the 13 forward
+// neighbour cells (each pair of cells once: (+1, 0, 0); (-1..1, +1, 0);
+// (-1..1, -1..1, +1)), as at most 5 runs of particles [lo, hi) of a grid's cell order: cells are in
+// x-fastest order, so the cells cx - 1 .. cx + 1 of one (y, z) row hold one
+// contiguous run (in a dense bed a cell holds one or two grains: a loop per
+// cell would be mostly loop). Run 0 is the own row from the own cell's
+// first particle on (the caller starts it after the row's grain); empty
+// runs are left out. Returns the number of runs.
+inline int half_stencil_runs(const std::array<int, 3>& dims, const std::uint32_t* cell_start, int cx, int cy, int cz,
+                             std::size_t lo[5], std::size_t hi[5]) {
+  constexpr int kRows[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};  // (dy, dz) of the rows past the own one
+  const auto at = [&](int x, int y, int z) {
+    return cell_start[(static_cast<std::size_t>(z) * dims[1] + y) * dims[0] + x];
+  };
+  const int x0 = cx > 0 ? cx - 1 : 0, x1 = cx + 1 < dims[0] ? cx + 1 : cx;
+  int runs = 0;
+  lo[runs] = at(cx, cy, cz), hi[runs] = at(x1 + 1, cy, cz), ++runs;  // cell x1 + 1: the next row's first, or the end
+  for (const auto& d : kRows) {
+    const int ny = cy + d[0], nz = cz + d[1];
+    if (ny < 0 || nz < 0 || ny >= dims[1] || nz >= dims[2]) continue;
+    lo[runs] = at(x0, ny, nz), hi[runs] = at(x1 + 1, ny, nz);
+    if (lo[runs] < hi[runs]) ++runs;
+  }
+  return runs;
+}
+
+// Room in pi, pj for `more` candidates past the `kept` ones: they grow by a
+// small step past what is kept (within their capacity, no new block), so
+// the pages they touch are those push_back would touch.
+inline void room_for(std::vector<std::uint32_t>& pi, std::vector<std::uint32_t>& pj, std::size_t kept,
+                     std::size_t more) {
+  if (kept + more > pi.size()) pi.resize(kept + more + 1024), pj.resize(pi.size());
 }
 
 }  // namespace
@@ -201,7 +214,10 @@ void NeighborList::collect_by_size_class(const ParticleStore& p, double rmin, do
       grids.emplace_back(p, members[static_cast<std::size_t>(k)], std::max(2 * R + s + reach_, 1e-300));
   }
   const auto skin = [&](std::size_t i, std::size_t j) { return pair_skin(p, i, j) + reach_; };
-  auto consider = [&](std::size_t i, std::size_t j) { consider_pair<Bodies, Ghosts>(p, n_own, i, j, skin, pi, pj); };
+  std::size_t kept = pi.size();
+  const auto row = [&](std::size_t i, const std::uint32_t* order, std::size_t lo, std::size_t hi) {
+    kept = consider_row<Bodies, Ghosts>(p, n_own, i, order, lo, hi, skin, pi.data(), pj.data(), kept);
+  };
   for (int a = 0; a < classes; ++a) {
     if (members[static_cast<std::size_t>(a)].empty()) continue;
     const ClassGrid& g = grids[static_cast<std::size_t>(a)];
@@ -210,20 +226,22 @@ void NeighborList::collect_by_size_class(const ParticleStore& p, double rmin, do
       for (int cy = 0; cy < g.dims[1]; ++cy)
         for (int cx = 0; cx < g.dims[0]; ++cx) {
           const std::size_t c = g.index({cx, cy, cz});
-          for (const auto& st : kHalfStencil) {
-            const int nx = cx + st[0], ny = cy + st[1], nz = cz + st[2];
-            if (nx < 0 || ny < 0 || nz < 0 || nx >= g.dims[0] || ny >= g.dims[1] || nz >= g.dims[2]) continue;
-            const std::size_t c2 = g.index({nx, ny, nz});
-            for (auto u = g.cell_start[c]; u < g.cell_start[c + 1]; ++u) {
-              const auto b0 = c2 == c ? u + 1 : g.cell_start[c2];
-              for (auto w = b0; w < g.cell_start[c2 + 1]; ++w) consider(g.order[u], g.order[w]);
-            }
+          if (g.cell_start[c] == g.cell_start[c + 1]) continue;
+          std::size_t run_lo[5], run_hi[5];
+          const int runs = half_stencil_runs(g.dims, g.cell_start.data(), cx, cy, cz, run_lo, run_hi);
+          std::size_t room = 0;
+          for (int u = 0; u < runs; ++u) room += run_hi[u] - run_lo[u];
+          for (auto u = g.cell_start[c]; u < g.cell_start[c + 1]; ++u) {
+            run_lo[0] = std::size_t{u} + 1;
+            room_for(pi, pj, kept, room);
+            for (int r = 0; r < runs; ++r) row(g.order[u], g.order.data(), run_lo[r], run_hi[r]);
           }
         }
     // With every larger class: each grain of this class (in its cell order)
     // against the cells of the larger class's grid that its reach to that
     // class (its radius, the class's largest, their skin) touches; the cells
-    // being at least that wide, at most 27, and about 9 for a small grain.
+    // being at least that wide, at most 27 (9 runs in x), and about 9 for a
+    // small grain.
     for (int b = a + 1; b < classes; ++b) {
       if (members[static_cast<std::size_t>(b)].empty()) continue;
       const ClassGrid& G = grids[static_cast<std::size_t>(b)];
@@ -235,14 +253,17 @@ void NeighborList::collect_by_size_class(const ParticleStore& p, double rmin, do
         const double reach = (ri + R + s + reach_) * (1 + 1e-12);
         const auto lo = G.cell_of(p.x[i] - Vec3::Constant(reach)), hi = G.cell_of(p.x[i] + Vec3::Constant(reach));
         for (int dz = lo[2]; dz <= hi[2]; ++dz)
-          for (int dy = lo[1]; dy <= hi[1]; ++dy)
-            for (int dx = lo[0]; dx <= hi[0]; ++dx) {
-              const std::size_t c2 = G.index({dx, dy, dz});
-              for (auto w = G.cell_start[c2]; w < G.cell_start[c2 + 1]; ++w) consider(i, G.order[w]);
-            }
+          for (int dy = lo[1]; dy <= hi[1]; ++dy) {
+            const std::size_t w0 = G.cell_start[G.index({lo[0], dy, dz})];
+            const std::size_t w1 = G.cell_start[G.index({hi[0], dy, dz}) + 1];
+            room_for(pi, pj, kept, w1 - w0);
+            row(i, G.order.data(), w0, w1);
+          }
       }
     }
   }
+  pi.resize(kept);
+  pj.resize(kept);
 }
 
 std::vector<std::pair<const char*, std::size_t>> NeighborList::memory_parts() const {
@@ -329,40 +350,22 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   // Likewise ghost-ghost pairs are left out only when ghosts exist.
   const auto skin = [&](std::size_t i, std::size_t j) { return pair_skin(p, i, j) + reach_; };
   auto collect = [&](auto exclude_same_body, auto with_ghosts) {
-    // pi, pj grow by a small step past what is kept (within their capacity
-    // no new block): the pages they touch are those push_back would touch.
     std::size_t kept = pi.size();
-    // The half stencil's 14 cells as 5 runs of particles: cells are in x-fastest
-    // order, so the cells cx - 1 .. cx + 1 of one (y, z) row hold one
-    // contiguous run (in a dense bed a cell holds one or two grains: a loop
-    // per cell would be mostly loop).
-    constexpr int kRows[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};  // (dy, dz) of the rows past the own one
     for (int cz = 0; cz < dims[2]; ++cz)
       for (int cy = 0; cy < dims[1]; ++cy)
         for (int cx = 0; cx < dims[0]; ++cx) {
           const std::size_t c = (static_cast<std::size_t>(cz) * dims[1] + cy) * dims[0] + cx;
           if (cell_start[c] == cell_start[c + 1]) continue;
-          const int x0 = cx > 0 ? cx - 1 : 0, x1 = cx + 1 < dims[0] ? cx + 1 : cx;
           std::size_t run_lo[5], run_hi[5];
-          int runs = 0;
-          run_lo[runs] = cell_start[c], run_hi[runs] = cell_start[c + 1 + static_cast<std::size_t>(x1 - cx)], ++runs;  // own row
-          for (const auto& d : kRows) {
-            const int ny = cy + d[0], nz = cz + d[1];
-            if (ny < 0 || nz < 0 || ny >= dims[1] || nz >= dims[2]) continue;
-            const std::size_t row = (static_cast<std::size_t>(nz) * dims[1] + ny) * dims[0];
-            run_lo[runs] = cell_start[row + static_cast<std::size_t>(x0)];
-            run_hi[runs] = cell_start[row + static_cast<std::size_t>(x1) + 1];
-            if (run_lo[runs] < run_hi[runs]) ++runs;
-          }
+          const int runs = half_stencil_runs(dims, cell_start.data(), cx, cy, cz, run_lo, run_hi);
           std::size_t room = 0;
           for (int u = 0; u < runs; ++u) room += run_hi[u] - run_lo[u];
           for (auto a = cell_start[c]; a < cell_start[c + 1]; ++a) {
-            const std::size_t i = order[a];
             run_lo[0] = a + 1;  // the own cell after a, then cell cx + 1
-            if (kept + room > pi.size()) pi.resize(kept + room + 1024), pj.resize(pi.size());
+            room_for(pi, pj, kept, room);
             for (int u = 0; u < runs; ++u)
               kept = consider_row<decltype(exclude_same_body)::value, decltype(with_ghosts)::value>(
-                  p, n_own, i, order.data(), run_lo[u], run_hi[u], skin, pi.data(), pj.data(), kept);
+                  p, n_own, order[a], order.data(), run_lo[u], run_hi[u], skin, pi.data(), pj.data(), kept);
           }
         }
     pi.resize(kept);

@@ -3,9 +3,9 @@
 // history follows its pair through re-sorting, removals and rebuilds.
 #include <gtest/gtest.h>
 
-#include <random>
 #include <algorithm>
 #include <numeric>
+#include <random>
 #include <set>
 
 #include "sim/neighbor/neighbor_list.hpp"
@@ -17,7 +17,8 @@ ParticleStore random_store(std::mt19937_64& rng, std::size_t n, double L) {
   ParticleStore p;
   p.configure(FieldSet{}, 0);
   std::uniform_real_distribution<double> u(0, L), r(0.02, 0.05);
-  for (std::size_t i = 0; i < n; ++i) p.add(static_cast<std::int64_t>(i), Vec3(u(rng), u(rng), u(rng)), Vec3::Zero(), r(rng), 1.0, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    p.add(static_cast<std::int64_t>(i), Vec3(u(rng), u(rng), u(rng)), Vec3::Zero(), r(rng), 1.0, 0);
   return p;
 }
 
@@ -55,33 +56,35 @@ TEST(NeighborList, MatchesBruteForce) {
 
 // The cells of a build are walked as runs of neighbouring cells in x: boxes
 // one or two cells thick in some direction, and one cell in all, keep every
-// pair too (the runs clipped at the box's faces).
+// pair too (the runs clipped at the box's faces), with one size and with
+// sizes over a ratio of 9 (searched by size class).
 TEST(NeighborList, ThinBoxesMatchBruteForce) {
   std::mt19937_64 rng(7);
   const Vec3 boxes[] = {{1.0, 1.0, 0.1}, {0.1, 1.0, 1.0}, {1.0, 0.15, 0.25}, {0.1, 0.1, 0.1}, {2.0, 0.2, 0.2}};
-  for (const Vec3& box : boxes) {
-    ParticleStore p;
-    p.configure(FieldSet{}, 0);
-    std::uniform_real_distribution<double> u(0, 1), r(0.02, 0.045);
-    const std::size_t n = static_cast<std::size_t>(3000 * box.prod()) + 20;
-    for (std::size_t i = 0; i < n; ++i)
-      p.add(static_cast<std::int64_t>(n - i), Vec3(u(rng) * box[0], u(rng) * box[1], u(rng) * box[2]), Vec3::Zero(),
-            r(rng), 1.0, 0);
-    NeighborList nl;
-    const double skin = 0.015;
-    nl.configure(0, skin);
-    Walls w;
-    nl.build(p, w, Vec3(0, 0, 0), box, 0, true);
-    std::set<std::pair<std::int64_t, std::int64_t>> brute;
-    for (std::size_t i = 0; i < p.size(); ++i)
-      for (std::size_t j = 0; j < p.size(); ++j) {
-        if (p.id[i] >= p.id[j]) continue;
-        const double c = p.radius[i] + p.radius[j] + skin;
-        if ((p.x[i] - p.x[j]).squaredNorm() < c * c) brute.insert({p.id[i], p.id[j]});
-      }
-    EXPECT_EQ(list_pairs(nl, p), brute) << "box " << box.transpose();
-    EXPECT_GT(brute.size(), 10u);
-  }
+  for (const bool wide : {false, true})
+    for (const Vec3& box : boxes) {
+      ParticleStore p;
+      p.configure(FieldSet{}, 0);
+      std::uniform_real_distribution<double> u(0, 1), r(wide ? 0.005 : 0.02, 0.045);
+      const std::size_t n = static_cast<std::size_t>(3000 * box.prod()) + 20;
+      for (std::size_t i = 0; i < n; ++i)
+        p.add(static_cast<std::int64_t>(n - i), Vec3(u(rng) * box[0], u(rng) * box[1], u(rng) * box[2]), Vec3::Zero(),
+              r(rng), 1.0, 0);
+      NeighborList nl;
+      const double skin = 0.015;
+      nl.configure(0, skin);
+      Walls w;
+      nl.build(p, w, Vec3(0, 0, 0), box, 0, true);
+      std::set<std::pair<std::int64_t, std::int64_t>> brute;
+      for (std::size_t i = 0; i < p.size(); ++i)
+        for (std::size_t j = 0; j < p.size(); ++j) {
+          if (p.id[i] >= p.id[j]) continue;
+          const double c = p.radius[i] + p.radius[j] + skin;
+          if ((p.x[i] - p.x[j]).squaredNorm() < c * c) brute.insert({p.id[i], p.id[j]});
+        }
+      EXPECT_EQ(list_pairs(nl, p), brute) << "box " << box.transpose() << (wide ? ", wide sizes" : "");
+      EXPECT_GT(brute.size(), 10u);
+    }
 }
 
 TEST(NeighborList, TriggerFiresBeforeAPairIsMissed) {
