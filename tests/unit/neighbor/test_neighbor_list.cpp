@@ -33,6 +33,24 @@ std::set<std::pair<std::int64_t, std::int64_t>> list_pairs(const NeighborList& n
   return s;
 }
 
+// The pairs a list must hold, by brute force, with the rules of the build:
+// the pair skin (one skin, or f (ri + rj) up to it), no ghost-ghost pair, no
+// pair of a grain with its own image, none within one clump.
+std::set<std::pair<std::int64_t, std::int64_t>> brute_pairs(const ParticleStore& p, double skin, double f) {
+  std::set<std::pair<std::int64_t, std::int64_t>> s;
+  const std::size_t n = p.size(), own = p.n_owned();
+  const bool bodies = p.fields().has(Field::Body);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      if ((i >= own && j >= own) || p.id[i] == p.id[j]) continue;
+      if (bodies && p.body[i] >= 0 && p.body[i] == p.body[j]) continue;
+      const double sk = f > 0 ? std::min(f * (p.radius[i] + p.radius[j]), skin) : skin;
+      const double c = p.radius[i] + p.radius[j] + sk;
+      if ((p.x[i] - p.x[j]).squaredNorm() < c * c) s.insert({std::min(p.id[i], p.id[j]), std::max(p.id[i], p.id[j])});
+    }
+  return s;
+}
+
 TEST(NeighborList, MatchesBruteForce) {
   std::mt19937_64 rng(1);
   for (const bool sort : {false, true}) {
@@ -42,13 +60,7 @@ TEST(NeighborList, MatchesBruteForce) {
     nl.configure(0, skin);
     Walls w;
     nl.build(p, w, Vec3(0, 0, 0), Vec3(1, 1, 1), 0, sort);
-    std::set<std::pair<std::int64_t, std::int64_t>> brute;
-    for (std::size_t i = 0; i < p.size(); ++i)
-      for (std::size_t j = 0; j < p.size(); ++j) {
-        if (p.id[i] >= p.id[j]) continue;
-        const double c = p.radius[i] + p.radius[j] + skin;
-        if ((p.x[i] - p.x[j]).squaredNorm() < c * c) brute.insert({p.id[i], p.id[j]});
-      }
+    const auto brute = brute_pairs(p, skin, 0.0);
     EXPECT_EQ(list_pairs(nl, p), brute);
     EXPECT_GT(brute.size(), 100u);
   }
@@ -75,13 +87,7 @@ TEST(NeighborList, ThinBoxesMatchBruteForce) {
       nl.configure(0, skin);
       Walls w;
       nl.build(p, w, Vec3(0, 0, 0), box, 0, true);
-      std::set<std::pair<std::int64_t, std::int64_t>> brute;
-      for (std::size_t i = 0; i < p.size(); ++i)
-        for (std::size_t j = 0; j < p.size(); ++j) {
-          if (p.id[i] >= p.id[j]) continue;
-          const double c = p.radius[i] + p.radius[j] + skin;
-          if ((p.x[i] - p.x[j]).squaredNorm() < c * c) brute.insert({p.id[i], p.id[j]});
-        }
+      const auto brute = brute_pairs(p, skin, 0.0);
       EXPECT_EQ(list_pairs(nl, p), brute) << "box " << box.transpose() << (wide ? ", wide sizes" : "");
       EXPECT_GT(brute.size(), 10u);
     }
@@ -155,24 +161,6 @@ ParticleStore wide_store(std::mt19937_64& rng, std::size_t n, double L, double r
     if (bodies) p.body.back() = static_cast<std::int64_t>(i / 3);
   }
   return p;
-}
-
-// The pairs a list must hold, by brute force, with the rules of the build:
-// the pair skin (one skin, or f (ri + rj) up to it), no ghost-ghost pair, no
-// pair of a grain with its own image, none within one clump.
-std::set<std::pair<std::int64_t, std::int64_t>> brute_pairs(const ParticleStore& p, double skin, double f) {
-  std::set<std::pair<std::int64_t, std::int64_t>> s;
-  const std::size_t n = p.size(), own = p.n_owned();
-  const bool bodies = p.fields().has(Field::Body);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 1; j < n; ++j) {
-      if ((i >= own && j >= own) || p.id[i] == p.id[j]) continue;
-      if (bodies && p.body[i] >= 0 && p.body[i] == p.body[j]) continue;
-      const double sk = f > 0 ? std::min(f * (p.radius[i] + p.radius[j]), skin) : skin;
-      const double c = p.radius[i] + p.radius[j] + sk;
-      if ((p.x[i] - p.x[j]).squaredNorm() < c * c) s.insert({std::min(p.id[i], p.id[j]), std::max(p.id[i], p.id[j])});
-    }
-  return s;
 }
 
 // Size ratios 10 and 20 go through the search by size class: the same pairs
