@@ -62,12 +62,12 @@ struct Ops {
   static void gather3(const double* base, const std::uint32_t* idx, std::uint32_t count, I64, Live, D& a, D& b, D& c) {
     const std::uint32_t i0 = idx[0];
     avx2_index::load3(base, i0, count > 1 ? idx[1] : i0, count > 2 ? idx[2] : i0, count > 3 ? idx[3] : i0, a, b, c);
-  }  static void row_fields(const double* x, const double* radius, const std::uint32_t* rows, std::uint32_t count, I64 row,
+  }
+  static void row_fields(const double* x, const double* radius, const std::uint32_t* rows, std::uint32_t count, I64 row,
                          I64 row3, Live on, std::size_t, D& a, D& b, D& c, D& r) {
     gather3(x, rows, count, row3, on, a, b, c);
     r = gather1(radius, rows, count, row, on);
   }
-
   static D set1(double a) { return _mm256_set1_pd(a); }
   static D add(D a, D c) { return _mm256_add_pd(a, c); }
   static D sub(D a, D c) { return _mm256_sub_pd(a, c); }

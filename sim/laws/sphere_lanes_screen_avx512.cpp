@@ -44,7 +44,7 @@ struct Ops {
   // (a row holds about four entries), their x and radius are 24 and 8
   // consecutive doubles: loaded whole (masked at the end of the rows) and
   // permuted into the lanes, instead of gathered (4 gathers, the slowest
-  // instructions of the pass on Zen 4/5).
+  // instructions of the pass on the Zen 5 VM of bench/RESULTS.md).
   static void row_fields(const double* x, const double* radius, const std::uint32_t* rows, std::uint32_t count,
                          I64 row, I64 row3, Live on, std::size_t row_end, D& a, D& b, D& c, D& r) {
     const std::uint32_t r0 = rows[0];

@@ -154,12 +154,13 @@ inline std::size_t consider_row(const ParticleStore& p, std::size_t n_own, std::
 
 // The half stencil of cell (cx, cy, cz), the own cell and the 13 forward
 // neighbour cells (each pair of cells once: (+1, 0, 0); (-1..1, +1, 0);
-// (-1..1, -1..1, +1)), as at most 5 runs of particles [lo, hi) of a grid's cell order: cells are in
-// x-fastest order, so the cells cx - 1 .. cx + 1 of one (y, z) row hold one
-// contiguous run (in a dense bed a cell holds one or two grains: a loop per
-// cell would be mostly loop). Run 0 is the own row from the own cell's
-// first particle on (the caller starts it after the row's grain); empty
-// runs are left out. Returns the number of runs.
+// (-1..1, -1..1, +1)), as at most 5 runs of particles [lo, hi) of a grid's
+// cell order: cells are in x-fastest order, so the cells cx - 1 .. cx + 1
+// of one (y, z) row hold one contiguous run (in a dense bed a cell holds
+// one or two grains: a loop per cell would be mostly loop). Run 0 is the
+// own row from the own cell's first particle on (the caller starts it
+// after the row's grain); empty runs are left out. Returns the number of
+// runs.
 inline int half_stencil_runs(const std::array<int, 3>& dims, const std::uint32_t* cell_start, int cx, int cy, int cz,
                              std::size_t lo[5], std::size_t hi[5]) {
   constexpr int kRows[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};  // (dy, dz) of the rows past the own one
@@ -184,6 +185,29 @@ inline int half_stencil_runs(const std::array<int, 3>& dims, const std::uint32_t
 inline void room_for(std::vector<std::uint32_t>& pi, std::vector<std::uint32_t>& pj, std::size_t kept,
                      std::size_t more) {
   if (kept + more > pi.size()) pi.resize(kept + more + 1024), pj.resize(pi.size());
+}
+
+// The candidate pairs of the grains of cell (cx, cy, cz) of a grid (dims,
+// cell_start, order): each against the later grains of its own cell and
+// those of the 13 forward cells. Returns the new count kept.
+template <bool Bodies, bool Ghosts, class Index, class Skin>
+std::size_t cell_pairs(const ParticleStore& p, std::size_t n_own, const std::array<int, 3>& dims,
+                       const std::uint32_t* cell_start, const Index* order, int cx, int cy, int cz, Skin&& skin,
+                       std::vector<std::uint32_t>& pi, std::vector<std::uint32_t>& pj, std::size_t kept) {
+  const std::size_t c = (static_cast<std::size_t>(cz) * dims[1] + cy) * dims[0] + cx;
+  if (cell_start[c] == cell_start[c + 1]) return kept;
+  std::size_t run_lo[5], run_hi[5];
+  const int runs = half_stencil_runs(dims, cell_start, cx, cy, cz, run_lo, run_hi);
+  std::size_t room = 0;
+  for (int u = 0; u < runs; ++u) room += run_hi[u] - run_lo[u];
+  for (std::size_t a = cell_start[c]; a < cell_start[c + 1]; ++a) {
+    run_lo[0] = a + 1;  // the own cell after a, then cell cx + 1
+    room_for(pi, pj, kept, room);
+    for (int u = 0; u < runs; ++u)
+      kept = consider_row<Bodies, Ghosts>(p, n_own, order[a], order, run_lo[u], run_hi[u], skin, pi.data(), pj.data(),
+                                          kept);
+  }
+  return kept;
 }
 
 }  // namespace
@@ -215,28 +239,15 @@ void NeighborList::collect_by_size_class(const ParticleStore& p, double rmin, do
   }
   const auto skin = [&](std::size_t i, std::size_t j) { return pair_skin(p, i, j) + reach_; };
   std::size_t kept = pi.size();
-  const auto row = [&](std::size_t i, const std::uint32_t* order, std::size_t lo, std::size_t hi) {
-    kept = consider_row<Bodies, Ghosts>(p, n_own, i, order, lo, hi, skin, pi.data(), pj.data(), kept);
-  };
   for (int a = 0; a < classes; ++a) {
     if (members[static_cast<std::size_t>(a)].empty()) continue;
     const ClassGrid& g = grids[static_cast<std::size_t>(a)];
     // Within the class: the half stencil.
     for (int cz = 0; cz < g.dims[2]; ++cz)
       for (int cy = 0; cy < g.dims[1]; ++cy)
-        for (int cx = 0; cx < g.dims[0]; ++cx) {
-          const std::size_t c = g.index({cx, cy, cz});
-          if (g.cell_start[c] == g.cell_start[c + 1]) continue;
-          std::size_t run_lo[5], run_hi[5];
-          const int runs = half_stencil_runs(g.dims, g.cell_start.data(), cx, cy, cz, run_lo, run_hi);
-          std::size_t room = 0;
-          for (int u = 0; u < runs; ++u) room += run_hi[u] - run_lo[u];
-          for (auto u = g.cell_start[c]; u < g.cell_start[c + 1]; ++u) {
-            run_lo[0] = std::size_t{u} + 1;
-            room_for(pi, pj, kept, room);
-            for (int r = 0; r < runs; ++r) row(g.order[u], g.order.data(), run_lo[r], run_hi[r]);
-          }
-        }
+        for (int cx = 0; cx < g.dims[0]; ++cx)
+          kept = cell_pairs<Bodies, Ghosts>(p, n_own, g.dims, g.cell_start.data(), g.order.data(), cx, cy, cz, skin, pi,
+                                            pj, kept);
     // With every larger class: each grain of this class (in its cell order)
     // against the cells of the larger class's grid that its reach to that
     // class (its radius, the class's largest, their skin) touches; the cells
@@ -257,7 +268,7 @@ void NeighborList::collect_by_size_class(const ParticleStore& p, double rmin, do
             const std::size_t w0 = G.cell_start[G.index({lo[0], dy, dz})];
             const std::size_t w1 = G.cell_start[G.index({hi[0], dy, dz}) + 1];
             room_for(pi, pj, kept, w1 - w0);
-            row(i, G.order.data(), w0, w1);
+            kept = consider_row<Bodies, Ghosts>(p, n_own, i, G.order.data(), w0, w1, skin, pi.data(), pj.data(), kept);
           }
       }
     }
@@ -353,21 +364,9 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
     std::size_t kept = pi.size();
     for (int cz = 0; cz < dims[2]; ++cz)
       for (int cy = 0; cy < dims[1]; ++cy)
-        for (int cx = 0; cx < dims[0]; ++cx) {
-          const std::size_t c = (static_cast<std::size_t>(cz) * dims[1] + cy) * dims[0] + cx;
-          if (cell_start[c] == cell_start[c + 1]) continue;
-          std::size_t run_lo[5], run_hi[5];
-          const int runs = half_stencil_runs(dims, cell_start.data(), cx, cy, cz, run_lo, run_hi);
-          std::size_t room = 0;
-          for (int u = 0; u < runs; ++u) room += run_hi[u] - run_lo[u];
-          for (auto a = cell_start[c]; a < cell_start[c + 1]; ++a) {
-            run_lo[0] = a + 1;  // the own cell after a, then cell cx + 1
-            room_for(pi, pj, kept, room);
-            for (int u = 0; u < runs; ++u)
-              kept = consider_row<decltype(exclude_same_body)::value, decltype(with_ghosts)::value>(
-                  p, n_own, order[a], order.data(), run_lo[u], run_hi[u], skin, pi.data(), pj.data(), kept);
-          }
-        }
+        for (int cx = 0; cx < dims[0]; ++cx)
+          kept = cell_pairs<decltype(exclude_same_body)::value, decltype(with_ghosts)::value>(
+              p, n_own, dims, cell_start.data(), order.data(), cx, cy, cz, skin, pi, pj, kept);
     pi.resize(kept);
     pj.resize(kept);
   };
