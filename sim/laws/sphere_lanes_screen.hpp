@@ -36,6 +36,7 @@ namespace grains::sim {
 /// doubles per particle (Eigen::Vector3d arrays).
 struct SphereScreenFields {
   const std::uint32_t* row_start = nullptr;
+  std::size_t rows = 0;  // the list's rows (row_start's length - 1; the fields hold at least as many)
   const std::uint32_t* partner = nullptr;
   std::size_t entries = 0;  // partner's length (may_touch's, history's / 3)
   std::uint8_t* may_touch = nullptr;

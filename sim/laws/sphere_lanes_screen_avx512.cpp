@@ -36,7 +36,11 @@ struct Ops {
   static D gather1(const double* base, const std::uint32_t*, std::uint32_t, I64 index, Live on) {
     return avx512_index::gather(base, index, on);
   }
-  static void gather3(const double* base, const std::uint32_t*, std::uint32_t, I64 index3, Live on, D& a, D& b, D& c) {
+  // A full group by loads and a transpose (avx512_index::load3), a group
+  // cut short at the end of the rows by gathers.
+  static void gather3(const double* base, const std::uint32_t* idx, std::uint32_t count, I64 index3, Live on, D& a,
+                      D& b, D& c) {
+    if (count == kLanes) return avx512_index::load3(base, idx, a, b, c);
     a = avx512_index::gather(base, index3, on), b = avx512_index::gather(base + 1, index3, on),
     c = avx512_index::gather(base + 2, index3, on);
   }
@@ -54,23 +58,9 @@ struct Ops {
       return;
     }
     const std::size_t have = row_end - r0 < 8 ? row_end - r0 : 8;  // rows from r0 that exist
-    const std::uint32_t mx = (1u << (3 * have)) - 1;
-    const double* bx = x + 3 * static_cast<std::size_t>(r0);
-    const __m512d x0 = _mm512_maskz_loadu_pd(static_cast<__mmask8>(mx), bx);
-    const __m512d x1 = _mm512_maskz_loadu_pd(static_cast<__mmask8>(mx >> 8), bx + 8);
-    const __m512d x2 = _mm512_maskz_loadu_pd(static_cast<__mmask8>(mx >> 16), bx + 16);
-    const __m512d rr = _mm512_maskz_loadu_pd(static_cast<__mmask8>((1u << have) - 1), radius + r0);
     const __m512i rel = _mm512_sub_epi64(row, _mm512_set1_epi64(static_cast<long long>(r0)));
-    const __m512i rel3 = _mm512_sub_epi64(row3, _mm512_set1_epi64(3 * static_cast<long long>(r0)));
-    const auto pick = [&](__m512i idx) {  // element idx of x0 | x1 | x2, in the live lanes
-      const __mmask8 high = _mm512_mask_cmpge_epi64_mask(on, idx, _mm512_set1_epi64(16));
-      const __m512d lo = _mm512_maskz_permutex2var_pd(on, x0, idx, x1);
-      return _mm512_mask_permutexvar_pd(lo, high, idx, x2);
-    };
-    a = pick(rel3);
-    b = pick(_mm512_add_epi64(rel3, _mm512_set1_epi64(1)));
-    c = pick(_mm512_add_epi64(rel3, _mm512_set1_epi64(2)));
-    r = _mm512_maskz_permutexvar_pd(on, rel, rr);
+    avx512_index::rows3(x, r0, have, rel, on, a, b, c);
+    r = avx512_index::rows1(radius, r0, have, rel, on);
   }
   static D set1(double a) { return _mm512_set1_pd(a); }
   static D add(D a, D c) { return _mm512_add_pd(a, c); }

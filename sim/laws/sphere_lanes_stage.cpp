@@ -87,6 +87,7 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
   const SphereGatheredKernelFn gathered = one_material && !frozen ? sphere_kernel_gathered() : nullptr;
   auto doubles = [](const Vec3* a) { return reinterpret_cast<const double*>(a); };
   const SphereScreenFields in{row_start,
+                              nl.row_start.empty() ? 0 : nl.row_start.size() - 1,
                               partner,
                               nl.partner.size(),
                               may_touch,
