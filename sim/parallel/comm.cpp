@@ -43,6 +43,16 @@ bool Comm::init([[maybe_unused]] int* argc, [[maybe_unused]] char*** argv, [[may
   MPI_Initialized(&on);
   if (on) return true;
   if (!force && !launched_by_mpirun()) return false;
+  // Open MPI's shared-memory transport (btl vader) sends a message above
+  // 4 KiB by rendezvous and a copy through the kernel (CMA), a system call
+  // or more per message. A step's ghost update in a scene of 10^4 grains is
+  // one such message per neighbour (35 KB on 2 ranks in bench/pour): on the
+  // VM of bench/RESULTS.md (2026-12-07) it took 20 us a step, 6.5 us sent
+  // eagerly. Messages up to 64 KiB are sent eagerly, unless the environment
+  // sets the limit (overwrite 0: the user's or the launcher's value wins;
+  // other MPI libraries ignore the variable). Larger messages keep the
+  // single copy.
+  setenv("OMPI_MCA_btl_vader_eager_limit", "65536", 0);
   int provided = 0;
   MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
