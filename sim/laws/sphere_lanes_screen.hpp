@@ -49,6 +49,7 @@ struct SphereScreenFields {
   const double* f = nullptr;       // prefetched only
   const double* torque = nullptr;  // prefetched only
   double reach = 0;
+  bool prefetch = false;  // a scene larger than the cache (the stage prefetches: the kernel gathers its partners)
   // Per lane of the batch: the entry's row, entry and partner.
   std::uint32_t* row_of = nullptr;
   std::uint32_t* entry_of = nullptr;

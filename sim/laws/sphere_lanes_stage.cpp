@@ -100,6 +100,7 @@ void lanes_rows(Scene& s, SphereContactBatch& b, std::size_t row_begin, std::siz
                               doubles(p.f.data()),
                               doubles(p.torque.data()),
                               reach,
+                              Prefetch,
                               row_of,
                               entry_of,
                               partner_of};
