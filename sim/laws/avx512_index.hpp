@@ -39,7 +39,9 @@ inline __m512d gather(const double* base, __m512i index, __mmask8 m = 0xff) {
 /// that gathers at base + c with indices 3 idx would give, by eight masked
 /// loads of three doubles (two items to a register: the second's read four
 /// doubles low, so that they land in lanes 4-6) and a transpose. Cheaper than
-/// the three gathers on the Zen 5 VM of bench/RESULTS.md (2026-12-07).
+/// the three gathers on the Zen 5 VM of bench/RESULTS.md (2026-12-07) where
+/// the cache holds the items; in scenes past it the kernel's partners
+/// measured faster gathered (sphere_lanes.inc).
 inline void load3(const double* base, const std::uint32_t* idx, __m512d& a, __m512d& b, __m512d& c) {
   const auto pair = [base](std::uint32_t lo, std::uint32_t hi) {
     const __m512d l = _mm512_maskz_loadu_pd(0x07, base + 3 * std::size_t{lo});
