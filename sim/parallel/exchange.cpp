@@ -29,21 +29,30 @@ void unpack_body(BodyStore& b, const char*& r) {
 // A ghost update within one rank (the images of a serial run's periodic
 // faces): the kinematic fields of particles from[k] copied to to + k, field
 // by field, as pack_kinematics and unpack_kinematics would carry them with
-// no shift, without the buffer. Every source lies before `to` (a swap sends
-// only what existed before its own ghosts).
-void copy_kinematics(ParticleStore& p, const std::vector<std::uint32_t>& from, std::size_t to) {
+// no shift, without the buffer; for k in `only` when it is given (the images
+// the lists use). Every source lies before `to` (a swap sends only what
+// existed before its own ghosts).
+void copy_kinematics(ParticleStore& p, const std::vector<std::uint32_t>& from, std::size_t to,
+                     const std::vector<std::uint32_t>* only) {
   p.declare_fields([&](const ParticleStore::FieldInfo& f, auto member, auto) {
     if (!f.kinematic) return;
     auto& vec = p.*member;
+    const auto w = static_cast<std::size_t>(f.width);
+    auto each = [&](auto&& copy) {
+      if (only)
+        for (const auto k : *only) copy(k);
+      else
+        for (std::size_t k = 0; k < from.size(); ++k) copy(k);
+    };
     if constexpr (std::is_same_v<std::decay_t<decltype(vec)>, std::vector<Vec3>>) {
       if (member == &ParticleStore::x) {  // as pack_kinematics writes the image's position: x + shift
-        for (std::size_t k = 0; k < from.size(); ++k) vec[to + k] = vec[from[k]] + Vec3::Zero();
+        each([&](std::size_t k) { vec[to + k] = vec[from[k]] + Vec3::Zero(); });
         return;
       }
     }
-    const auto w = static_cast<std::size_t>(f.width);
-    for (std::size_t k = 0; k < from.size(); ++k)
+    each([&](std::size_t k) {
       for (std::size_t c = 0; c < w; ++c) vec[(to + k) * w + c] = vec[from[k] * w + c];
+    });
   });
 }
 
@@ -328,6 +337,33 @@ void Exchange::build_ghosts(ParticleStore& p, double time) {
   stats_.ghosts = p.n_ghost();
 }
 
+void Exchange::refresh_listed_only(const ParticleStore& p, const NeighborList& list) {
+  // A ghost is needed when a list entry has it, or when a needed ghost of a
+  // later swap is its image, or when a swap to another rank sends it.
+  std::vector<char> need(p.size(), 0);
+  for (std::size_t r = 0; r + 1 < list.row_start.size(); ++r)
+    if (list.row_start[r] < list.row_start[r + 1]) {
+      need[r] = 1;
+      for (auto k = list.row_start[r]; k < list.row_start[r + 1]; ++k) need[list.partner[k]] = 1;
+    }
+  for (std::size_t k = swaps_.size(); k-- > 0;) {
+    auto& sw = swaps_[k];
+    sw.listed.clear();
+    sw.listed_only = false;
+    if (!local(sw)) {
+      for (const auto i : sw.send) need[i] = 1;
+      continue;
+    }
+    for (std::size_t n = 0; n < sw.recv_count; ++n)
+      if (need[sw.recv_start + n]) {
+        sw.listed.push_back(static_cast<std::uint32_t>(n));
+        need[sw.send[n]] = 1;
+      }
+    sw.listed_only = sw.listed.size() < sw.recv_count;
+    if (!sw.listed_only) std::vector<std::uint32_t>().swap(sw.listed);
+  }
+}
+
 void Exchange::set_domain(const Domain& d) {
   const int g = d.shear.gradient;
   dec_.resize(g, d.lo[g], d.hi[g]);
@@ -348,10 +384,8 @@ void Exchange::update_ghosts(ParticleStore& p, double time) {
     transfers_.clear();
     for (std::size_t k = a; k < b; ++k) {
       const auto& sw = swaps_[k];
-      const bool local = sw.src >= 0 && sw.send.size() == sw.recv_count &&
-                         (!comm_.parallel() || (sw.dest == comm_.rank() && sw.src == comm_.rank()));
-      if (local) {
-        copy_kinematics(p, sw.send, sw.recv_start);
+      if (local(sw)) {
+        copy_kinematics(p, sw.send, sw.recv_start, sw.listed_only ? &sw.listed : nullptr);
         continue;
       }
       auto& sb = sbufs_[k - a];
@@ -368,14 +402,18 @@ void Exchange::update_ghosts(ParticleStore& p, double time) {
     for (std::size_t k = a; k < b; ++k) {
       const auto& sw = swaps_[k];
       const bool shift = sw.recv_shift.squaredNorm() > 0;
-      for (std::size_t n = 0; n < sw.recv_count; ++n) {
+      auto move = [&](std::size_t n) {
         const std::size_t g = sw.recv_start + n;
         if (shift) p.x[g] += sw.recv_shift;
         if (sw.shear_side != 0) {
           p.x[g][f] = sheared(sw, p.x[g][f], sw.flow_wrap[n], time);
           p.v[g][f] += sw.shear_side * domain_.shear_speed();
         }
-      }
+      };
+      if (sw.listed_only)
+        for (const auto n : sw.listed) move(n);
+      else
+        for (std::size_t n = 0; n < sw.recv_count; ++n) move(n);
     }
   }
 }

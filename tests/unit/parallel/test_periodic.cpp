@@ -183,6 +183,89 @@ TEST(Periodic, SmallGrainsImagesReachOnlyAsFarAsTheirPairs) {
   EXPECT_GT(small_through, 10u) << want.size();
 }
 
+// Steps a periodic scene (box of side L along x and y) and checks after each
+// step that every image in a list entry is at its grain's position, shifted;
+// counts the images in list entries and the images in none left behind.
+struct ImageCheck {
+  std::size_t steps = 0, listed = 0, stale = 0;
+};
+ImageCheck step_and_check_images(const std::string& yaml, double L, std::size_t steps) {
+  ImageCheck out;
+  auto s = from_yaml(yaml);
+  auto& sc = s.scene;
+  s.pipeline.initialize(sc);
+  const auto& p = sc.particles;
+  const auto& nl = sc.neighbors;
+  while (sc.clock.step < sc.clock.n_steps && out.steps < steps) {
+    s.pipeline.step(sc);
+    ++out.steps;
+    const std::size_t n = p.n_owned();
+    std::map<std::int64_t, std::size_t> at;
+    for (std::size_t i = 0; i < n; ++i) at[p.id[i]] = i;
+    std::vector<char> listed(p.size(), 0);
+    for (std::size_t r = 0; r + 1 < nl.row_start.size(); ++r)
+      for (auto k = nl.row_start[r]; k < nl.row_start[r + 1]; ++k) listed[r] = listed[nl.partner[k]] = 1;
+    for (std::size_t g = n; g < p.size(); ++g) {
+      const std::size_t i = at.at(p.id[g]);
+      bool same = true;  // positions (the kick after the forces moved on the grains' velocities)
+      for (int d = 0; d < 3; ++d) {
+        const double dx = p.x[g][d] - p.x[i][d];
+        const double shifted = std::abs(dx) > 0.5 * L ? p.x[i][d] + std::copysign(L, dx) : p.x[i][d];
+        same = same && p.x[g][d] == shifted;
+      }
+      if (listed[g]) {
+        EXPECT_TRUE(same) << "step " << sc.clock.step << ": the image of grain " << p.id[g] << " in the list is stale";
+        if (!same) return out;
+        ++out.listed;
+      } else {
+        out.stale += !same;
+      }
+    }
+  }
+  return out;
+}
+
+// Between builds the ghost updates refresh only the images the list uses
+// (and the images they are made from): every image in a list entry is at
+// its grain's position, shifted, after each step, while most small grains'
+// images, in no entry, are left where they were.
+TEST(Periodic, UpdatesRefreshEveryImageTheListUses) {
+  const double L = 0.015;
+  std::ostringstream o;
+  o << "domain: {min: [0, 0, 0], max: [" << L << ", " << L << ", 0.005], periodic: [true, true, false]}\n"
+    << "gravity: [3, 2, 0]\n"  // along the periodic axes: every grain moves and wraps
+    << "materials:\n" << material("m", 2500, 1e7, 0.3, 0.5, 0) << "particles:\n"
+    << "  - {material: m, radius: 0.002, count: 6, placement: {type: random_fill, region: {min: [0, 0, 0], max: ["
+    << L << ", " << L << ", 0.005]}}}\n"
+    << "  - {material: m, radius: 0.0002, count: 2500, placement: {type: random_fill, region: {min: [0, 0, 0], max: ["
+    << L << ", " << L << ", 0.005]}}}\n"
+    << "time: {dt_rayleigh: 0.2, end: 0.01}\n";
+  const auto c = step_and_check_images(o.str(), L, 40);
+  EXPECT_EQ(c.steps, 40u);
+  EXPECT_GT(c.listed, 40u * 30u);
+  EXPECT_GT(c.stale, 40u * 100u) << "the updates refresh images no list entry uses";
+}
+
+// Two grains in opposite corners of the box, a pair only through the corner:
+// the corner image (made from the image across x) is in the list, the image
+// across x is not, and is refreshed all the same.
+TEST(Periodic, CornerImageIsRefreshedThroughTheImageItIsMadeFrom) {
+  const double L = 0.01, r = 0.001, a = 0.7072 * r * 1.02;  // 2 sqrt(2) a just beyond 2 r
+  std::ostringstream o;
+  o.precision(17);
+  o << "domain: {min: [0, 0, 0], max: [" << L << ", " << L << ", 0.004], periodic: [true, true, false]}\n"
+    << "gravity: [3, 2, 0]\n"
+    << "materials:\n" << material("m", 2500, 1e7, 0.3, 0.5, 0) << "particles:\n"
+    << single("a", "m", sim::Vec3(a, a, 0.002), r, sim::Vec3(0, 0, 0))
+    << single("b", "m", sim::Vec3(L - a, L - a, 0.002), r, sim::Vec3(0, 0, 0))
+    << "neighbor: {skin: 0.1}\n"
+    << "time: {dt_rayleigh: 0.2, end: 0.01}\n";
+  const auto c = step_and_check_images(o.str(), L, 30);
+  EXPECT_EQ(c.steps, 30u);
+  EXPECT_EQ(c.listed, 30u * 2u);  // each grain's corner image
+  EXPECT_EQ(c.stale, 30u * 2u);   // the images across y: those across x make the corner images
+}
+
 TEST(Periodic, CaseKeyErrors) {
   const std::string base = "materials:\n" + material("m", 2500, 1e7, 0.3, 0.5, 0) + "particles:\n" +
                            single("a", "m", sim::Vec3(0.005, 0.005, 0.005), 0.001, sim::Vec3(0, 0, 0)) +
