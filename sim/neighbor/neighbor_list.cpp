@@ -2,6 +2,7 @@
 
 #include "sim/neighbor/size_classes.hpp"
 #include "sim/state/free_heap.hpp"
+#include "sim/state/huge_pages.hpp"
 
 #include <algorithm>
 #include <array>
@@ -50,8 +51,9 @@ struct CellGrid {
     }
     inv = Vec3(dims[0] / (hi[0] - lo[0]), dims[1] / (hi[1] - lo[1]), dims[2] / (hi[2] - lo[2]));
     const std::size_t ncells = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
-    std::vector<std::uint32_t> cell_id(n);
-    cell_start.assign(ncells + 1, 0);
+    std::vector<std::uint32_t> cell_id;
+    assign_huge(cell_id, n, std::uint32_t{0});
+    assign_huge(cell_start, ncells + 1, std::uint32_t{0});
     for (std::size_t i = 0; i < n; ++i) {
       const auto c = (static_cast<std::size_t>(cell_of(p.x[i], 2)) * dims[1] + cell_of(p.x[i], 1)) * dims[0] +
                      cell_of(p.x[i], 0);
@@ -59,7 +61,7 @@ struct CellGrid {
       ++cell_start[c + 1];
     }
     std::partial_sum(cell_start.begin(), cell_start.end(), cell_start.begin());
-    order.resize(n);
+    assign_huge(order, n, std::size_t{0});
     std::vector<std::uint32_t> fill(cell_start.begin(), cell_start.end() - 1);
     for (std::size_t i = 0; i < n; ++i) order[fill[cell_id[i]]++] = i;
   }
@@ -353,8 +355,8 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
 
   // Candidate pairs from the 13 forward neighbour cells and the own cell.
   std::vector<std::uint32_t> pi, pj;
-  pi.reserve(8 * n);
-  pj.reserve(8 * n);
+  reserve_huge(pi, 8 * n);
+  reserve_huge(pj, 8 * n);
   // Balls of the same clump never interact: in scenes with clumps (the
   // `body` field exists) their pairs are left out here, by a separate
   // instantiation of the loop, so sphere scenes pay nothing for the check.
@@ -403,11 +405,11 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   // Counting sort of the pairs into rows, in place: row_start[i + 1] first
   // holds where row i starts and is moved along it as its pairs are placed,
   // ending where row i ends (= where row i + 1 starts).
-  row_start.assign(n + 1, 0);
+  assign_huge(row_start, n + 1, std::uint32_t{0});
   for (auto i : pi)
     if (i + 2 <= n) ++row_start[i + 2];
   std::partial_sum(row_start.begin(), row_start.end(), row_start.begin());
-  partner.resize(pi.size());
+  assign_huge(partner, pi.size(), std::uint32_t{0});
   for (std::size_t k = 0; k < pi.size(); ++k) partner[row_start[pi[k] + 1]++] = pj[k];
   // Keep each row ordered by partner index: better locality, deterministic order.
   for (std::size_t i = 0; i < n; ++i) std::sort(partner.begin() + row_start[i], partner.begin() + row_start[i + 1]);
@@ -420,8 +422,8 @@ void NeighborList::build(ParticleStore& p, const Walls& walls, const Vec3& lo_bo
   // rebuild often and would fault it in again each time.
   if (n >= kReleaseHeapFrom) release_free_heap();
 
-  may_touch.assign(partner.size(), 1);
-  history.assign(partner.size() * static_cast<std::size_t>(history_size_), 0.0);
+  assign_huge(may_touch, partner.size(), std::uint8_t{1});
+  assign_huge(history, partner.size() * static_cast<std::size_t>(history_size_), 0.0);
   if (history_size_ > 0) {
     carry_history(p, old_row_start, old_partner, old_history);
     std::vector<double>().swap(old_history);
@@ -562,14 +564,14 @@ void NeighborList::carry_history(const ParticleStore& p, const std::vector<std::
 void NeighborList::build_gather(const ParticleStore& p) {
   const std::size_t n = p.n_owned();
   const std::size_t rows = row_start.empty() ? 0 : row_start.size() - 1;
-  gather_start.assign(n + 1, 0);
+  assign_huge(gather_start, n + 1, std::uint32_t{0});
   for (std::size_t i = 0; i < rows; ++i)
     for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
       if (i < n) ++gather_start[i + 1];
       if (partner[k] < n) ++gather_start[partner[k] + 1];
     }
   std::partial_sum(gather_start.begin(), gather_start.end(), gather_start.begin());
-  gather_entry.resize(gather_start.back());
+  assign_huge(gather_entry, std::size_t{gather_start.back()}, std::uint32_t{0});
   // Each particle's entries, and beside each the other particle's local
   // index (the row is known here; finding it later from the entry took a
   // bisection of row_start per entry), then ordered by its global id.

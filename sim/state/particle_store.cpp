@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "sim/state/free_heap.hpp"
+#include "sim/state/huge_pages.hpp"
 
 namespace grains::sim {
 
@@ -98,7 +99,8 @@ void ParticleStore::permute(const std::vector<std::size_t>& order) {
     // Large fields: each gathered into one scratch block and copied back.
     // The fields keep their blocks (and their room for ghosts), and one block
     // is faulted in per permutation instead of a new one per field.
-    std::vector<Quat> scratch((most + sizeof(Quat) - 1) / sizeof(Quat));  // aligned for every field's type
+    std::vector<Quat> scratch;  // aligned for every field's type
+    assign_huge(scratch, (most + sizeof(Quat) - 1) / sizeof(Quat), Quat::Identity());
     for_each_field([&](auto& vec, int w) {
       using T = typename std::decay_t<decltype(vec)>::value_type;
       T* const out = reinterpret_cast<T*>(scratch.data());
@@ -141,7 +143,12 @@ void ParticleStore::unpack_owned(const char* rec) {
 void ParticleStore::reserve_more(std::size_t count) {
   const std::size_t want = size() + count;
   for_each_field([want](auto& vec, int w) {
-    if (vec.capacity() < want * static_cast<std::size_t>(w)) vec.reserve(want * static_cast<std::size_t>(w));
+    const std::size_t m = want * static_cast<std::size_t>(w);
+    if (vec.capacity() >= m) return;
+    std::decay_t<decltype(vec)> more;
+    reserve_huge(more, m);
+    more.assign(vec.begin(), vec.end());
+    vec.swap(more);
   });
 }
 
