@@ -480,6 +480,30 @@ void NeighborList::restore(const ParticleStore& p, BuildState b) {
   if (with_gather_) build_gather(p);
 }
 
+void NeighborList::renumber_ghosts(std::size_t n_owned, const std::vector<std::uint32_t>& to, std::size_t count) {
+  const std::size_t rows = row_start.size() - 1;
+  if (rows != n_owned + to.size() || build_id_.size() != rows)
+    throw std::logic_error("NeighborList::renumber_ghosts: not the particles of the last build");
+  std::size_t m = n_owned;
+  for (std::size_t r = n_owned; r < rows; ++r) {
+    if (to[r - n_owned] == kGone) {
+      if (row_start[r] != row_start[r + 1]) throw std::logic_error("NeighborList::renumber_ghosts: a listed ghost dropped");
+      continue;
+    }
+    row_start[m + 1] = row_start[r + 1];
+    build_id_[m] = build_id_[r];
+    ++m;
+  }
+  if (m != count) throw std::logic_error("NeighborList::renumber_ghosts: count does not match");
+  row_start.resize(count + 1);
+  build_id_.resize(count);
+  for (auto& j : partner)
+    if (j >= n_owned) {
+      j = to[j - n_owned];
+      if (j == kGone) throw std::logic_error("NeighborList::renumber_ghosts: a listed partner dropped");
+    }
+}
+
 void NeighborList::import_history(std::int64_t a, std::int64_t b, const double* h) {
   imported_ids_.push_back(a);
   imported_ids_.push_back(b);

@@ -106,6 +106,11 @@ class NeighborList {
         if (any) fn(build_id_[r], build_id_[partner[k]], h);
       }
   }
+  /// The ghosts were renumbered after the build: ghost n_owned + g is now
+  /// to[g], or gone (kGone: a ghost in no entry, whose row is empty);
+  /// `count` particles remain. Rows, partners and the build's ids follow.
+  static constexpr std::uint32_t kGone = ~std::uint32_t{0};
+  void renumber_ghosts(std::size_t n_owned, const std::vector<std::uint32_t>& to, std::size_t count);
   /// History of a pair from elsewhere (a migrating particle's contacts),
   /// used by the next build when the pair is in the list.
   void import_history(std::int64_t id_a, std::int64_t id_b, const double* h);

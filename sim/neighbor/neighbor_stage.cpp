@@ -83,7 +83,7 @@ void NeighborStage::full_update(Scene& s, bool sort, double time, bool canonical
   if (sort) s.neighbors.sort_by_cell(p, s.domain.lo, s.domain.hi);
   s.exchange->build_ghosts(p, time);
   s.neighbors.build(p, s.walls, s.domain.lo, s.domain.hi, s.clock.time, false);
-  s.exchange->refresh_listed_only(p, s.neighbors);
+  s.exchange->drop_unlisted_images(p, s.neighbors);
 }
 
 }  // namespace grains::sim

@@ -29,30 +29,21 @@ void unpack_body(BodyStore& b, const char*& r) {
 // A ghost update within one rank (the images of a serial run's periodic
 // faces): the kinematic fields of particles from[k] copied to to + k, field
 // by field, as pack_kinematics and unpack_kinematics would carry them with
-// no shift, without the buffer; for k in `only` when it is given (the images
-// the lists use). Every source lies before `to` (a swap sends only what
-// existed before its own ghosts).
-void copy_kinematics(ParticleStore& p, const std::vector<std::uint32_t>& from, std::size_t to,
-                     const std::vector<std::uint32_t>* only) {
+// no shift, without the buffer. Every source lies before `to` (a swap sends
+// only what existed before its own ghosts).
+void copy_kinematics(ParticleStore& p, const std::vector<std::uint32_t>& from, std::size_t to) {
   p.declare_fields([&](const ParticleStore::FieldInfo& f, auto member, auto) {
     if (!f.kinematic) return;
     auto& vec = p.*member;
-    const auto w = static_cast<std::size_t>(f.width);
-    auto each = [&](auto&& copy) {
-      if (only)
-        for (const auto k : *only) copy(k);
-      else
-        for (std::size_t k = 0; k < from.size(); ++k) copy(k);
-    };
     if constexpr (std::is_same_v<std::decay_t<decltype(vec)>, std::vector<Vec3>>) {
       if (member == &ParticleStore::x) {  // as pack_kinematics writes the image's position: x + shift
-        each([&](std::size_t k) { vec[to + k] = vec[from[k]] + Vec3::Zero(); });
+        for (std::size_t k = 0; k < from.size(); ++k) vec[to + k] = vec[from[k]] + Vec3::Zero();
         return;
       }
     }
-    each([&](std::size_t k) {
+    const auto w = static_cast<std::size_t>(f.width);
+    for (std::size_t k = 0; k < from.size(); ++k)
       for (std::size_t c = 0; c < w; ++c) vec[(to + k) * w + c] = vec[from[k] * w + c];
-    });
   });
 }
 
@@ -261,7 +252,7 @@ void Exchange::build_ghosts(ParticleStore& p, double time) {
   // the fields did not keep enough from the last: from the owned grains
   // near each face with a neighbour (one near two faces also has an image
   // at their edge).
-  if (!ghosts_sized_ || p.room() < p.size() + stats_.ghosts + stats_.ghosts / 16) {
+  if (!ghosts_sized_ || p.room() < p.size() + stats_.images_built + stats_.images_built / 16) {
     ghosts_sized_ = true;
     std::array<bool, 6> to{};
     for (int d = 0; d < 3; ++d)
@@ -334,34 +325,68 @@ void Exchange::build_ghosts(ParticleStore& p, double time) {
       swaps_.push_back(std::move(sw));
     }
   }
-  stats_.ghosts = p.n_ghost();
+  stats_.ghosts = stats_.images_built = p.n_ghost();
 }
 
-void Exchange::refresh_listed_only(const ParticleStore& p, const NeighborList& list) {
-  // A ghost is needed when a list entry has it, or when a needed ghost of a
-  // later swap is its image, or when a swap to another rank sends it.
-  std::vector<char> need(p.size(), 0);
+void Exchange::drop_unlisted_images(ParticleStore& p, NeighborList& list) {
+  // A ghost is needed when a list entry has it, when a needed ghost of a
+  // later swap is its image, or when a swap to another rank sends it. Only
+  // this rank's own images can go: another rank sends what it chose.
+  // (Per ghost only: the owned grains all stay.)
+  const std::size_t n = p.n_owned(), ghosts = p.n_ghost();
+  if (ghosts == 0) return;
+  std::vector<char> need(ghosts, 0);
+  auto mark = [&](std::size_t i) {
+    if (i >= n) need[i - n] = 1;
+  };
   for (std::size_t r = 0; r + 1 < list.row_start.size(); ++r)
     if (list.row_start[r] < list.row_start[r + 1]) {
-      need[r] = 1;
-      for (auto k = list.row_start[r]; k < list.row_start[r + 1]; ++k) need[list.partner[k]] = 1;
+      mark(r);
+      for (auto k = list.row_start[r]; k < list.row_start[r + 1]; ++k) mark(list.partner[k]);
     }
+  bool any = false;
   for (std::size_t k = swaps_.size(); k-- > 0;) {
-    auto& sw = swaps_[k];
-    sw.listed.clear();
-    sw.listed_only = false;
+    const auto& sw = swaps_[k];
     if (!local(sw)) {
-      for (const auto i : sw.send) need[i] = 1;
+      for (const auto i : sw.send) mark(i);
+      for (std::size_t m = 0; m < sw.recv_count; ++m) need[sw.recv_start + m - n] = 1;  // another rank's choice
       continue;
     }
-    for (std::size_t n = 0; n < sw.recv_count; ++n)
-      if (need[sw.recv_start + n]) {
-        sw.listed.push_back(static_cast<std::uint32_t>(n));
-        need[sw.send[n]] = 1;
-      }
-    sw.listed_only = sw.listed.size() < sw.recv_count;
-    if (!sw.listed_only) std::vector<std::uint32_t>().swap(sw.listed);
+    for (std::size_t m = 0; m < sw.recv_count; ++m) {
+      if (need[sw.recv_start + m - n])
+        mark(sw.send[m]);
+      else
+        any = true;
+    }
   }
+  if (!any) return;
+  std::vector<std::uint32_t> to(ghosts, NeighborList::kGone);
+  std::size_t count = n;
+  for (std::size_t g = 0; g < ghosts; ++g)
+    if (need[g]) to[g] = static_cast<std::uint32_t>(count++);
+  const auto moved = [&](std::uint32_t i) { return i < n ? i : to[i - n]; };
+  // Each swap's ghosts follow those of the swaps before it.
+  std::size_t next = n;
+  for (auto& sw : swaps_) {
+    const bool own = local(sw);
+    std::size_t kept = 0;
+    for (std::size_t m = 0; m < sw.send.size(); ++m) {
+      if (own && !need[sw.recv_start + m - n]) continue;
+      sw.send[kept] = moved(sw.send[m]);
+      if (own && !sw.flow_wrap.empty()) sw.flow_wrap[kept] = sw.flow_wrap[m];
+      ++kept;
+    }
+    sw.send.resize(kept);
+    std::size_t received = 0;
+    for (std::size_t m = 0; m < sw.recv_count; ++m) received += need[sw.recv_start + m - n];
+    if (own && !sw.flow_wrap.empty()) sw.flow_wrap.resize(received);
+    sw.recv_start = next;
+    sw.recv_count = received;
+    next += received;
+  }
+  p.keep_ghosts(need);
+  list.renumber_ghosts(n, to, count);
+  stats_.ghosts = p.n_ghost();
 }
 
 void Exchange::set_domain(const Domain& d) {
@@ -385,7 +410,7 @@ void Exchange::update_ghosts(ParticleStore& p, double time) {
     for (std::size_t k = a; k < b; ++k) {
       const auto& sw = swaps_[k];
       if (local(sw)) {
-        copy_kinematics(p, sw.send, sw.recv_start, sw.listed_only ? &sw.listed : nullptr);
+        copy_kinematics(p, sw.send, sw.recv_start);
         continue;
       }
       auto& sb = sbufs_[k - a];
@@ -402,18 +427,14 @@ void Exchange::update_ghosts(ParticleStore& p, double time) {
     for (std::size_t k = a; k < b; ++k) {
       const auto& sw = swaps_[k];
       const bool shift = sw.recv_shift.squaredNorm() > 0;
-      auto move = [&](std::size_t n) {
+      for (std::size_t n = 0; n < sw.recv_count; ++n) {
         const std::size_t g = sw.recv_start + n;
         if (shift) p.x[g] += sw.recv_shift;
         if (sw.shear_side != 0) {
           p.x[g][f] = sheared(sw, p.x[g][f], sw.flow_wrap[n], time);
           p.v[g][f] += sw.shear_side * domain_.shear_speed();
         }
-      };
-      if (sw.listed_only)
-        for (const auto n : sw.listed) move(n);
-      else
-        for (std::size_t n = 0; n < sw.recv_count; ++n) move(n);
+      }
     }
   }
 }

@@ -45,6 +45,7 @@ class Exchange {
     long full_updates = 0, rebalances = 0;
     std::int64_t migrated = 0;  // particles sent to another rank, summed over updates
     std::size_t ghosts = 0;     // after the last full update
+    std::size_t images_built = 0;  // ghosts built then, before drop_unlisted_images
     double imbalance = 1;       // max/mean estimated work per rank at the last full update
   };
 
@@ -87,21 +88,21 @@ class Exchange {
   void set_domain(const Domain& d);
   /// Refreshes the ghosts' kinematics along the send lists, at time t.
   void update_ghosts(ParticleStore& p, double time);
-  /// After the lists are built on these ghosts: the ghost updates until the
-  /// next build refresh, of the images a rank makes of its own grains (a
-  /// periodic axis it holds whole), only those the lists use and the images
-  /// made from them; the others keep their state from the build, which
-  /// nothing reads. In a wide size distribution most images are small grains
-  /// that reach across the face only as far as the largest grain's cut-off
-  /// (bimodal10: a fifth of them are in the list). A new build_ghosts
-  /// refreshes all again until this is called.
-  void refresh_listed_only(const ParticleStore& p, const NeighborList& list);
+  /// After the lists are built on these ghosts: drops the images this rank
+  /// made of its own grains (a periodic axis it holds whole) that no list
+  /// entry uses and that no kept image is made from, and renumbers the
+  /// particles, the lists and the send lists. In a wide size distribution
+  /// most images are small grains that reach across the face only as far as
+  /// the largest grain's cut-off (bimodal10: a fifth of them are in the
+  /// list); the ghost updates, the force clearing and the memory then carry
+  /// only the rest. The same rows and entries in the same order: the same
+  /// sums.
+  void drop_unlisted_images(ParticleStore& p, NeighborList& list);
   /// Bytes held by the send lists and the message buffers (memory report;
   /// at their capacity: a buffer is written up to the largest message it held).
   std::size_t memory_bytes() const {
     std::size_t b = (sbuf_.capacity() + rbuf_.capacity()) + swaps_.capacity() * sizeof(Swap);
-    for (const auto& sw : swaps_)
-      b += (sw.send.capacity() + sw.listed.capacity()) * sizeof(std::uint32_t) + sw.flow_wrap.capacity();
+    for (const auto& sw : swaps_) b += sw.send.capacity() * sizeof(std::uint32_t) + sw.flow_wrap.capacity();
     return b;
   }
 
@@ -117,10 +118,6 @@ class Exchange {
     int shear_side = 0;
     double offset_periods = 0;
     std::vector<signed char> flow_wrap;
-    // refresh_listed_only: the received ghosts (0 .. recv_count - 1) the
-    // updates refresh, when not all.
-    bool listed_only = false;
-    std::vector<std::uint32_t> listed;
   };
   /// A swap within this rank: its ghosts are copies of its own particles.
   bool local(const Swap& sw) const {

@@ -66,6 +66,21 @@ void ParticleStore::clear_ghosts() {
   for_each_field([n](auto& vec, int w) { vec.resize(n * static_cast<std::size_t>(w)); });
 }
 
+void ParticleStore::keep_ghosts(const std::vector<char>& keep) {
+  const std::size_t n = n_owned_, total = size();
+  for_each_field([&](auto& vec, int w) {
+    const auto ww = static_cast<std::size_t>(w);
+    std::size_t m = n;
+    for (std::size_t g = n; g < total; ++g)
+      if (keep[g - n]) {
+        if (m != g)
+          for (std::size_t c = 0; c < ww; ++c) vec[m * ww + c] = vec[g * ww + c];
+        ++m;
+      }
+    vec.resize(m * ww);
+  });
+}
+
 void ParticleStore::remove_if(const std::vector<char>& remove) {
   clear_ghosts();
   std::vector<std::size_t> keep;

@@ -82,6 +82,8 @@ class ParticleStore {
   /// Append a ghost copy of particle `src` of `from` shifted by `shift`.
   void add_ghost(const ParticleStore& from, std::size_t src, const Vec3& shift);
   void clear_ghosts();
+  /// Keeps the ghosts g with keep[g - n_owned()] set, in their order.
+  void keep_ghosts(const std::vector<char>& keep);
   /// Room in every field for `count` more particles (ghosts about to
   /// arrive), so that they do not grow each field several times.
   void reserve_more(std::size_t count);
