@@ -22,7 +22,9 @@
 # SETTLE=T continues each poly seed from rest for T s of simulated time first
 # (its grains stop rattling) and tiles that. Their columns to read beside the
 # mono bed's: ns per list pair (pair stage)
-# and ns per grain-step (neighbour stage).
+# and ns per grain-step (neighbour stage); SIZES="6x3" adds a monodisperse bed
+# of 180,000 grains, the size of bimodal10:3x3 (the cache then holds as much
+# of either).
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(cd "$HERE/../.." && pwd)"
