@@ -304,6 +304,19 @@ def test_remove_grains_in_a_region_or_by_mask(pour, out):
             sim.remove()
 
 
+def test_insert_overlapping_a_grain_through_a_periodic_face_is_refused(gas, out):
+    gas["domain"]["periodic"] = [True, False, False]
+    with grains.Simulation(gas, out=out) as sim:
+        x = sim.positions.copy()
+        x[0, 0] = 0.0005  # 0.5 mm from the face x = 0: its image reaches past x = 0.1
+        sim.positions = x
+        sim.step(2)  # its image pairs with nothing: the list keeps none of it
+        near = [[0.0995, x[0, 1], x[0, 2]]]  # 1 mm from grain 0 through the face, radius 1 mm
+        with pytest.raises(ValueError, match="overlaps grain"):
+            sim.insert(near, 0.001)
+        assert sim.insert([[0.097, x[0, 1], x[0, 2]]], 0.001) == 1  # 3.5 mm from it
+
+
 def test_insert_grains(gas, out):
     with grains.Simulation(gas, out=out) as sim:
         n = sim.n_particles
