@@ -498,7 +498,7 @@ struct PySim {
           err = "insert: row " + std::to_string(k) + " overlaps grain " + std::to_string(p.id[i]) +
                 "; nothing was inserted";
       for (std::size_t j = 0; j < k && err.empty(); ++j)
-        if ((x[j] - x[k]).norm() < rk + r[j] * bound)
+        if (nearest_image(sc.domain, x[j] - x[k], sc.clock.time).norm() < rk + r[j] * bound)
           err = "insert: rows " + std::to_string(j) + " and " + std::to_string(k) + " overlap; nothing was inserted";
     }
     if (comm.agree_error(err)) throw py::value_error(err);

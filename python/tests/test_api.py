@@ -315,6 +315,8 @@ def test_insert_overlapping_a_grain_through_a_periodic_face_is_refused(gas, out)
         with pytest.raises(ValueError, match="overlaps grain"):
             sim.insert(near, 0.001)
         assert sim.insert([[0.097, x[0, 1], x[0, 2]]], 0.001) == 1  # 3.5 mm from it
+        with pytest.raises(ValueError, match="rows 0 and 1 overlap"):  # two new ones, through the face
+            sim.insert([[0.0005, 0.05, 0.05], [0.0995, 0.05, 0.05]], 0.001)
 
 
 def test_insert_grains(gas, out):

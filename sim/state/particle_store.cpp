@@ -115,7 +115,8 @@ void ParticleStore::permute(const std::vector<std::size_t>& order) {
     // The fields keep their blocks (and their room for ghosts), and one block
     // is faulted in per permutation instead of a new one per field.
     std::vector<Quat> scratch;  // aligned for every field's type
-    assign_huge(scratch, (most + sizeof(Quat) - 1) / sizeof(Quat), Quat::Identity());
+    reserve_huge(scratch, (most + sizeof(Quat) - 1) / sizeof(Quat));
+    scratch.resize((most + sizeof(Quat) - 1) / sizeof(Quat));  // (Quat's constructor writes nothing)
     for_each_field([&](auto& vec, int w) {
       using T = typename std::decay_t<decltype(vec)>::value_type;
       T* const out = reinterpret_cast<T*>(scratch.data());
