@@ -43,23 +43,6 @@ using namespace grains;
 
 namespace {
 
-// The separation d = a - b of two points of the domain, to its nearest
-// periodic image along each periodic axis (Lees–Edwards: an image across the
-// gradient's faces is also displaced along the flow by the offset at time t).
-sim::Vec3 nearest_image(const sim::Domain& dom, sim::Vec3 d, double t) {
-  if (dom.shear.on()) {
-    const int g = dom.shear.gradient, f = dom.shear.flow;
-    const double k = std::round(d[g] / (dom.hi[g] - dom.lo[g]));
-    if (k != 0) {
-      d[g] -= k * (dom.hi[g] - dom.lo[g]);
-      d[f] -= k * dom.shear_offset(t);
-    }
-  }
-  for (int a = 0; a < 3; ++a)
-    if (dom.periodic[a]) d[a] -= (dom.hi[a] - dom.lo[a]) * std::round(d[a] / (dom.hi[a] - dom.lo[a]));
-  return d;
-}
-
 // ---------------------------------------------------------------- YAML <-> Python
 
 // A YAML scalar as the Python value it reads as: int, float, bool, None or str.
@@ -493,12 +476,12 @@ struct PySim {
       // Every rank checks its own grains, through the periodic faces too (not
       // every image is kept between builds), and the ghosts it holds.
       for (std::size_t i = 0; i < p.size() && err.empty(); ++i)
-        if ((i < p.n_owned() ? nearest_image(sc.domain, p.x[i] - x[k], sc.clock.time) : sim::Vec3(p.x[i] - x[k])).norm() <
+        if ((i < p.n_owned() ? sc.domain.nearest_image(p.x[i] - x[k], sc.clock.time) : sim::Vec3(p.x[i] - x[k])).norm() <
             rk + p.radius[i])
           err = "insert: row " + std::to_string(k) + " overlaps grain " + std::to_string(p.id[i]) +
                 "; nothing was inserted";
       for (std::size_t j = 0; j < k && err.empty(); ++j)
-        if (nearest_image(sc.domain, x[j] - x[k], sc.clock.time).norm() < rk + r[j] * bound)
+        if (sc.domain.nearest_image(x[j] - x[k], sc.clock.time).norm() < rk + r[j] * bound)
           err = "insert: rows " + std::to_string(j) + " and " + std::to_string(k) + " overlap; nothing was inserted";
     }
     if (comm.agree_error(err)) throw py::value_error(err);

@@ -91,16 +91,8 @@ class PlacementGrid {
     sorted_idx_.resize(e.size());
     for (std::size_t k = 0; k < e.size(); ++k) sorted_key_[k] = e[k].first, sorted_idx_[k] = e[k].second;
   }
-  /// b - a, to the nearest periodic image.
-  Vec3 delta(const Vec3& a, const Vec3& b) const {
-    Vec3 d = b - a;
-    for (int k = 0; k < 3; ++k)
-      if (dom_.periodic[k]) {
-        const double L = dom_.hi[k] - dom_.lo[k];
-        d[k] -= L * std::round(d[k] / L);
-      }
-    return d;
-  }
+  /// b - a, to the nearest periodic image (at set-up: time 0).
+  Vec3 delta(const Vec3& a, const Vec3& b) const { return dom_.nearest_image(b - a, 0.0); }
   /// Calls overlaps(j) for the spheres within `reach` of x (and some
   /// beyond), until one returns true. reach: at most one cell by default.
   template <class Fn>

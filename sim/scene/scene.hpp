@@ -80,6 +80,25 @@ struct Domain {
     shear.base_time = t;
     hi[shear.gradient] = lo[shear.gradient] + L;
   }
+  /// A separation d = a - b of two points, to its nearest periodic image
+  /// along each periodic axis (Lees–Edwards: an image across the gradient's
+  /// faces is also displaced along the flow by the offset at time t).
+  Vec3 nearest_image(Vec3 d, double t) const {
+    if (shear.on()) {
+      const int g = shear.gradient, f = shear.flow;
+      const double k = std::round(d[g] / (hi[g] - lo[g]));
+      if (k != 0) {
+        d[g] -= k * (hi[g] - lo[g]);
+        d[f] -= k * shear_offset(t);
+      }
+    }
+    for (int a = 0; a < 3; ++a)
+      if (periodic[a]) {
+        const double L = hi[a] - lo[a];
+        d[a] -= L * std::round(d[a] / L);
+      }
+    return d;
+  }
   /// wrap() for a grain with velocity v at time t: across the sheared face
   /// first (its position along the flow and its velocity change), then along
   /// every periodic dimension.
