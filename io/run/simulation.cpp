@@ -161,6 +161,7 @@ void probe_output_dir(const std::filesystem::path& dir) {
 struct RankFigures {
   std::vector<std::int64_t> owned, ghosts, interior, pairs, messages, ghost_bytes;
   std::vector<double> pair_seconds, neighbor_seconds;
+  std::vector<double> stage_max;  // per pipeline stage: the slowest rank's seconds
 };
 
 RankFigures rank_figures(const Simulation& s) {
@@ -208,6 +209,7 @@ RankFigures rank_figures(const Simulation& s) {
   f.neighbor_seconds[static_cast<std::size_t>(me)] = neigh;
   comm.sum_in_place(f.pair_seconds);
   comm.sum_in_place(f.neighbor_seconds);
+  for (double sec : s.pipeline.stage_seconds()) f.stage_max.push_back(comm.max(sec));
   return f;
 }
 
@@ -486,6 +488,14 @@ RunSummary Runner::finish() {
   for (std::size_t k = 0; k < names.size(); ++k)
     j << (k ? ", " : "") << "\n    \"" << names[k] << "\": " << s.pipeline.stage_seconds()[k];
   j << "\n  }";
+  // On several ranks stage_seconds are rank 0's; the slowest rank's, stage by
+  // stage, are beside them (a stage's time includes its waits for the others).
+  if (ranks.stage_max.size() == names.size() && comm.size() > 1) {
+    j << ",\n  \"stage_seconds_max_over_ranks\": {";
+    for (std::size_t k = 0; k < names.size(); ++k)
+      j << (k ? ", " : "") << "\n    \"" << names[k] << "\": " << ranks.stage_max[k];
+    j << "\n  }";
+  }
   // Figures some stages keep (the ARKODE driver: steps, rejections, evaluations).
   bool details = false;
   for (std::size_t k = 0; k < names.size(); ++k) {

@@ -30,4 +30,7 @@ assert all(i > 0 for i in r["interior"]), "every rank owns interior grains"
 assert all(0 < i < o for i, o in zip(r["interior"], r["owned"])), "and a ghost layer's worth that are not"
 assert all(m >= 3 for m in r["messages_per_step"]), "each rank has neighbours along all three axes"
 assert min(s["ranks"]["list_pairs"]) > 0, "contacts on every rank"
+m = s["stage_seconds_max_over_ranks"]
+assert list(m) == list(s["stage_seconds"]), "the slowest rank's seconds name the same stages"
+assert all(m[k] >= v for k, v in s["stage_seconds"].items()), "and none is below rank 0's"
 PY
