@@ -12,14 +12,6 @@
 # GRAINS_REV=<git revision> to benchmark a committed revision (exported with
 # git archive into $BUILD/src-<rev>, built in $BUILD/rev-<rev>) instead of the
 # working tree, which other people may be editing.
-#
-# More ranks: RANKS="2" (a list; default none) runs grains on that many MPI
-# ranks after the serial runs, with its ordered force sums (the default) and
-# unordered (`parallel.deterministic: false`), and LIGGGHTS on as many; each
-# is printed as its particle-steps/s over the serial run's of the same code
-# (issue 26's 2-rank target is read there). TWIN=1 also runs two serial
-# grains at once: their summed throughput over one run alone is what the
-# machine gives two processes, the ceiling for 2 ranks.
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(cd "$HERE/../.." && pwd)"
@@ -117,51 +109,5 @@ if [ "${PACKING:-1}" != 0 ]; then
   echo "bulk packing fraction (3 d from walls, floor and surface; sampling error ~$GERR):"
   echo "  grains   $GPHI (surface at z = $GSURF m, $GN particles)"
   echo "  LIGGGHTS $LPHI (surface at z = $LSURF m, $LN particles)"
-fi
-
-# (f) More ranks, and two serial runs at once.
-rate_of() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['particle_steps_per_second'])" "$1/summary.json"; }
-MPIRUN=(mpirun --oversubscribe --bind-to none)
-[ "$(id -u)" -eq 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-for np in ${RANKS:-}; do
-  [ "$np" -gt 1 ] || continue
-  for mode in ordered unordered; do
-    set_det=(); [ "$mode" = unordered ] && set_det=(--set parallel.deterministic=false)
-    OUT="$WORK/grains_np${np}_$mode"
-    "${MPIRUN[@]}" -np "$np" "$GRAINS" run "$WORK/case.yaml" -o "$OUT" -q --set output.vtk=false "${set_det[@]}"
-    R_RATE=$(rate_of "$OUT")
-    python3 - "$OUT/summary.json" "$np" "$mode" "$G_RATE" <<'PY'
-import json, sys
-s = json.load(open(sys.argv[1])); np_, mode, serial = int(sys.argv[2]), sys.argv[3], float(sys.argv[4])
-r = s['particle_steps_per_second']
-print('grains on %d ranks, %s sums: %8.0f particle-steps/s (%.2f s), %.2f x serial' % (np_, mode, r, s['wall_time_s'], r / serial))
-rk = s.get('ranks', {})
-for k in range(len(rk.get('owned', []))):
-    print('  rank %d: %d grains owned, %d list pairs, pair stage %.2f s, neighbour stage %.2f s' % (
-        k, rk['owned'][k], rk['list_pairs'][k], rk['pair_seconds'][k], rk['neighbor_seconds'][k]))
-PY
-  done
-  mkdir -p "$WORK/liggghts_np$np"
-  sed -e "s#$WORK/liggghts/final.dump#$WORK/liggghts_np$np/final.dump#" -e "s#^processors .*#processors      $np 1 1#" "$WORK/liggghts/in.liggghts" > "$WORK/liggghts_np$np/in.liggghts"
-  (cd "$WORK/liggghts_np$np" && "${MPIRUN[@]}" -np "$np" "$LIGGGHTS" -in in.liggghts -log log.liggghts -echo none -screen none \
-     >/dev/null 2>&1 || true)
-  LOOPN=$(grep -m1 '^Loop time of' "$WORK/liggghts_np$np/log.liggghts" 2>/dev/null || true)
-  if [ -n "$LOOPN" ]; then
-    python3 -c "
-t, steps = float('$(echo "$LOOPN" | awk '{print $4}')'), int('$(echo "$LOOPN" | awk '{print $9}')')
-r = $N * steps / t
-print('LIGGGHTS on $np ranks: %8.0f particle-steps/s (%.2f s), %.2f x serial' % (r, t, r / $L_RATE))"
-  else
-    echo "LIGGGHTS on $np ranks: did not run (see $WORK/liggghts_np$np/log.liggghts)"
-  fi
-done
-if [ "${TWIN:-0}" = 1 ]; then
-  for k in 1 2; do
-    "$GRAINS" run "$WORK/case.yaml" -o "$WORK/grains_twin$k" -q --set output.vtk=false &
-  done
-  wait
-  python3 -c "
-a, b = $(rate_of "$WORK/grains_twin1"), $(rate_of "$WORK/grains_twin2")
-print('two serial grains runs at once: %.0f + %.0f particle-steps/s, together %.2f x one alone' % (a, b, (a + b) / $G_RATE))"
 fi
 echo "== load after: $(uptime)"
