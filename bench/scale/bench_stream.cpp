@@ -26,6 +26,12 @@ std::size_t doubles(const benchmark::State& state) {
   return static_cast<std::size_t>(state.range(0)) * (std::size_t{1} << 20) / sizeof(double);
 }
 
+// The bytes the loop asks for per iteration, as a rate.
+void count_bytes(benchmark::State& state, std::size_t bytes) {
+  state.counters["bytes_per_second"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * static_cast<double>(bytes), benchmark::Counter::kIsRate);
+}
+
 std::vector<double> filled(std::size_t n, double v) {
   std::vector<double> a(n);
   for (std::size_t i = 0; i < n; ++i) a[i] = v + 1e-9 * static_cast<double>(i % 1000);
@@ -46,9 +52,7 @@ void BM_Read(benchmark::State& state) {
     }
     benchmark::DoNotOptimize(s0 + s1 + s2 + s3);
   }
-  state.counters["bytes_per_second"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * static_cast<double>(n * sizeof(double)),
-      benchmark::Counter::kIsRate);
+  count_bytes(state, n * sizeof(double));
 }
 
 void BM_Update(benchmark::State& state) {
@@ -60,9 +64,7 @@ void BM_Update(benchmark::State& state) {
     benchmark::ClobberMemory();
   }
   benchmark::DoNotOptimize(a.data());
-  state.counters["bytes_per_second"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * static_cast<double>(2 * n * sizeof(double)),
-      benchmark::Counter::kIsRate);
+  count_bytes(state, 2 * n * sizeof(double));
 }
 
 void BM_Copy(benchmark::State& state) {
@@ -74,9 +76,7 @@ void BM_Copy(benchmark::State& state) {
     benchmark::ClobberMemory();
   }
   benchmark::DoNotOptimize(b.data());
-  state.counters["bytes_per_second"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * static_cast<double>(2 * n * sizeof(double)),
-      benchmark::Counter::kIsRate);
+  count_bytes(state, 2 * n * sizeof(double));
 }
 
 void BM_Triad(benchmark::State& state) {
@@ -89,9 +89,7 @@ void BM_Triad(benchmark::State& state) {
     benchmark::ClobberMemory();
   }
   benchmark::DoNotOptimize(a.data());
-  state.counters["bytes_per_second"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * static_cast<double>(3 * n * sizeof(double)),
-      benchmark::Counter::kIsRate);
+  count_bytes(state, 3 * n * sizeof(double));
 }
 
 }  // namespace
