@@ -14,6 +14,7 @@ import os
 import shutil
 import subprocess
 import sys
+import time
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
@@ -56,8 +57,10 @@ def main(argv):
     launch = os.path.join(os.path.dirname(os.path.abspath(__file__)), "pvpython_launch.py")
     # A display number of its own (tests run side by side), and another try
     # when the X server went away under pvpython (xvfb-run can hand over a
-    # display whose previous server is still shutting down).
-    for attempt in range(3):
+    # display whose previous server is still shutting down), after a pause
+    # that grows: on 2026-12-07 a CI run lost it three times within 4 s while
+    # the other ParaView test started its own.
+    for attempt in range(5):
         display = str(100 + (os.getpid() * 7 + attempt * 131) % 800)
         pv = subprocess.run(["xvfb-run", "-a", "-n", display, "-s", "-screen 0 1280x1024x24", pvpython, launch, view,
                              "--bounds", "--screenshot", png, "--size", "640x480"],
@@ -65,6 +68,7 @@ def main(argv):
         if "bad X server connection" not in pv.stdout + pv.stderr:
             break
         print("pvpython lost its X server (display %s); trying again" % display)
+        time.sleep(1 + 2 * attempt)
     lines = [l for l in pv.stdout.splitlines() if l.startswith("{")]
     if pv.returncode != 0 or not lines:
         sys.exit("pvpython failed (%d):\n%s\n%s" % (pv.returncode, pv.stdout[-3000:], pv.stderr[-3000:]))
