@@ -412,6 +412,11 @@ Scene build_scene(SceneConfig& c) {
     if constexpr (normal_history<N>() > 0) s.neighbors.set_reach(N::reach(s.pairs, rmax * grow));
   });
   setup_parallel(s, c, rmax);
+  if (c.parallel.deterministic == false && omp_get_max_threads() > 1)
+    c.warnings.push_back("parallel.deterministic: warning: false is ignored with " +
+                         std::to_string(omp_get_max_threads()) +
+                         " OpenMP threads: threads always sum the contact forces in order (OMP_NUM_THREADS=1 "
+                         "for sums in list order)");
   return s;
 }
 

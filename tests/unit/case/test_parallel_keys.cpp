@@ -3,10 +3,14 @@
 // 1.2 instead of 1.1 as soon as a case had a parallel block).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <optional>
 #include <string>
 
+#include <omp.h>
+
 #include "io/case/case.hpp"
+#include "io/run/simulation.hpp"
 #include "sim/keys/effect_doc.hpp"
 #include "sim/scene/scene_config.hpp"
 
@@ -46,6 +50,33 @@ TEST(ParallelKeys, BalanceThresholdDefaultsAlike) {
   const auto c = parse_case(with_parallel("parallel: {balance_threshold: 1.5, deterministic: true}\n"), "case.yaml");
   EXPECT_DOUBLE_EQ(c.scene.parallel.balance_threshold, 1.5);
   EXPECT_EQ(c.scene.parallel.deterministic, std::optional<bool>(true));
+}
+
+// Threads always sum in order: a case that turns the ordered sums off hears
+// that it was not done, and with one thread it is done without a word.
+TEST(ParallelKeys, UnorderedSumsWithThreadsSayTheyAreIgnored) {
+  const char* had = std::getenv("OMP_NUM_THREADS");
+  const std::string saved = had ? had : "";
+  const int threads = omp_get_max_threads();
+  auto run = [](const char* n) {
+    setenv("OMP_NUM_THREADS", n, 1);
+    omp_set_num_threads(std::atoi(n));
+    return make_simulation(parse_case(with_parallel("parallel: {deterministic: false}\n"), "case.yaml"));
+  };
+  const auto two = run("2");
+  EXPECT_TRUE(two.scene.deterministic);
+  ASSERT_EQ(two.c.scene.warnings.size(), 1u);
+  EXPECT_NE(two.c.scene.warnings[0].find("parallel.deterministic: warning: false is ignored with 2 OpenMP threads"),
+            std::string::npos)
+      << two.c.scene.warnings[0];
+  const auto one = run("1");
+  EXPECT_FALSE(one.scene.deterministic);
+  EXPECT_TRUE(one.c.scene.warnings.empty());
+  if (had)
+    setenv("OMP_NUM_THREADS", saved.c_str(), 1);
+  else
+    unsetenv("OMP_NUM_THREADS");
+  omp_set_num_threads(threads);
 }
 
 }  // namespace
