@@ -412,15 +412,10 @@ Scene build_scene(SceneConfig& c) {
     if constexpr (normal_history<N>() > 0) s.neighbors.set_reach(N::reach(s.pairs, rmax * grow));
   });
   setup_parallel(s, c, rmax);
-  if (c.parallel.deterministic == false && omp_get_max_threads() > 1)
-    c.warnings.push_back("parallel.deterministic: warning: false is ignored with " +
-                         std::to_string(omp_get_max_threads()) +
-                         " OpenMP threads: threads always sum the contact forces in order (OMP_NUM_THREADS=1 "
-                         "for sums in list order)");
   return s;
 }
 
-void setup_parallel(Scene& s, const SceneConfig& c, double rmax) {
+void setup_parallel(Scene& s, SceneConfig& c, double rmax) {
   // Threads: ordered, race-free force sums whenever more than one thread
   // runs, so results never depend on the thread count. Ranks: ordered sums
   // unless the case turns them off, so that results do not depend on the
@@ -430,7 +425,13 @@ void setup_parallel(Scene& s, const SceneConfig& c, double rmax) {
   // One thread unless OMP_NUM_THREADS asks for more (OpenMP would take every core).
   if (!std::getenv("OMP_NUM_THREADS")) omp_set_num_threads(1);
   const Comm& comm = Comm::world();
-  s.deterministic = c.parallel.deterministic.value_or(comm.parallel()) || omp_get_max_threads() > 1;
+  const bool threads = omp_get_max_threads() > 1;
+  s.deterministic = c.parallel.deterministic.value_or(comm.parallel()) || threads;
+  if (threads && c.parallel.deterministic == false)
+    c.warnings.push_back("parallel.deterministic: warning: false is ignored with " +
+                         std::to_string(omp_get_max_threads()) +
+                         " OpenMP threads: threads always sum the contact forces in order (OMP_NUM_THREADS=1 "
+                         "for sums in list order)");
   s.neighbors.set_gather(s.deterministic);
   // Ordered sums hold, per list entry, both sides' force (and torques) and
   // the gather's order (and, in the sphere lanes' compact layout, each

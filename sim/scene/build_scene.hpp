@@ -67,8 +67,9 @@ void add_grain(Scene& s, const ParticleSetConfig& set, const Vec3& x, double r, 
 
 /// Threads and ranks: the deterministic force sum when threads run, and under
 /// MPI (or with periodic dimensions) the exchange, after which this rank
-/// holds only the particles it owns. Called by build_scene.
-void setup_parallel(Scene& s, const SceneConfig& c, double rmax);
+/// holds only the particles it owns. Called by build_scene. A case's
+/// `deterministic: false` that threads override gets a warning in c.warnings.
+void setup_parallel(Scene& s, SceneConfig& c, double rmax);
 
 /// The physics stages the scene calls for, in phase order. Outputs are added
 /// by the caller (io).
