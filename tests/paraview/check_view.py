@@ -60,15 +60,17 @@ def main(argv):
     # display whose previous server is still shutting down), after a pause
     # that grows: on 2026-12-07 a CI run lost it three times within 4 s while
     # the other ParaView test started its own.
-    for attempt in range(5):
+    tries = 5
+    for attempt in range(tries):
         display = str(100 + (os.getpid() * 7 + attempt * 131) % 800)
         pv = subprocess.run(["xvfb-run", "-a", "-n", display, "-s", "-screen 0 1280x1024x24", pvpython, launch, view,
                              "--bounds", "--screenshot", png, "--size", "640x480"],
                             capture_output=True, text=True, timeout=300)
         if "bad X server connection" not in pv.stdout + pv.stderr:
             break
-        print("pvpython lost its X server (display %s); trying again" % display)
-        time.sleep(1 + 2 * attempt)
+        if attempt + 1 < tries:
+            print("pvpython lost its X server (display %s); trying again" % display)
+            time.sleep(1 + 2 * attempt)
     lines = [l for l in pv.stdout.splitlines() if l.startswith("{")]
     if pv.returncode != 0 or not lines:
         sys.exit("pvpython failed (%d):\n%s\n%s" % (pv.returncode, pv.stdout[-3000:], pv.stderr[-3000:]))

@@ -55,9 +55,19 @@ TEST(ParallelKeys, BalanceThresholdDefaultsAlike) {
 // Threads always sum in order: a case that turns the ordered sums off hears
 // that it was not done, and with one thread it is done without a word.
 TEST(ParallelKeys, UnorderedSumsWithThreadsSayTheyAreIgnored) {
-  const char* had = std::getenv("OMP_NUM_THREADS");
-  const std::string saved = had ? had : "";
-  const int threads = omp_get_max_threads();
+  // OMP_NUM_THREADS and the thread count as they were, however the test ends.
+  struct Restore {
+    const char* had = std::getenv("OMP_NUM_THREADS");
+    std::string saved = had ? had : "";
+    int threads = omp_get_max_threads();
+    ~Restore() {
+      if (had)
+        setenv("OMP_NUM_THREADS", saved.c_str(), 1);
+      else
+        unsetenv("OMP_NUM_THREADS");
+      omp_set_num_threads(threads);
+    }
+  } restore;
   auto run = [](const char* n) {
     setenv("OMP_NUM_THREADS", n, 1);
     omp_set_num_threads(std::atoi(n));
@@ -72,11 +82,6 @@ TEST(ParallelKeys, UnorderedSumsWithThreadsSayTheyAreIgnored) {
   const auto one = run("1");
   EXPECT_FALSE(one.scene.deterministic);
   EXPECT_TRUE(one.c.scene.warnings.empty());
-  if (had)
-    setenv("OMP_NUM_THREADS", saved.c_str(), 1);
-  else
-    unsetenv("OMP_NUM_THREADS");
-  omp_set_num_threads(threads);
 }
 
 }  // namespace
