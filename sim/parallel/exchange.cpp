@@ -278,12 +278,21 @@ void Exchange::build_ghosts(ParticleStore& p, double time) {
     const int g = domain_.shear.gradient;
     order = {g, g == 0 ? 1 : 0, g == 2 ? 1 : 2};
   }
+  // A dimension's two swaps (towards -1, then +1) choose from the grains
+  // there before either (owned, and the earlier dimensions' ghosts), so
+  // their messages travel together: the counts both ways, then the records
+  // both ways (two rounds per dimension, not four); the ghosts arrive in
+  // the swaps' order.
+  std::array<std::vector<char>, 2> counts_out, counts_in;
   for (const int d : order) {
     if (dec_.dims()[d] == 1 && !domain_.periodic[d]) continue;
     const std::size_t n_sel = p.size();
     const double L = domain_.hi[d] - domain_.lo[d];
-    for (int dir : {-1, +1}) {
-      Swap sw;
+    std::array<Swap, 2> pair;
+    transfers_.clear();
+    for (int side = 0; side < 2; ++side) {
+      const int dir = side == 0 ? -1 : +1;
+      Swap& sw = pair[static_cast<std::size_t>(side)];
       bool wd = false, ws = false;
       sw.dest = dec_.neighbor(me, d, dir, wd);
       sw.src = dec_.neighbor(me, d, -dir, ws);
@@ -293,21 +302,42 @@ void Exchange::build_ghosts(ParticleStore& p, double time) {
         const int f = domain_.shear.flow;
         sw.offset_periods = std::floor(domain_.shear_travel(time) / (domain_.hi[f] - domain_.lo[f]));
       }
-      sbuf_.clear();
-      if (sw.dest >= 0)
+      auto& sb = sbufs_[static_cast<std::size_t>(side)];
+      sb.clear();
+      if (sw.dest >= 0) {
         for (std::size_t i = 0; i < n_sel; ++i) {
           const double xd = p.x[i][d];
           const double cut = cut_of(i);
-          if (dir < 0 ? xd < lo[d] + cut : xd >= hi[d] - cut) {
-            sw.send.push_back(static_cast<std::uint32_t>(i));
-            p.pack(i, sbuf_);
-          }
+          if (dir < 0 ? xd < lo[d] + cut : xd >= hi[d] - cut) sw.send.push_back(static_cast<std::uint32_t>(i));
         }
-      comm_.sendrecv(sbuf_, sw.dest, rbuf_, sw.src, tag);
-      tag += 2;
+        p.pack_records(sw.send, sb);
+      }
+      counts_out[static_cast<std::size_t>(side)].resize(sizeof(std::int64_t));
+      const auto bytes_out = static_cast<std::int64_t>(sb.size());
+      std::memcpy(counts_out[static_cast<std::size_t>(side)].data(), &bytes_out, sizeof bytes_out);
+      counts_in[static_cast<std::size_t>(side)].assign(sizeof(std::int64_t), 0);
+      transfers_.push_back({&counts_out[static_cast<std::size_t>(side)], sw.dest, &counts_in[static_cast<std::size_t>(side)],
+                            sw.src, tag + 2 * side});
+    }
+    comm_.sendrecv_known(transfers_);
+    for (int side = 0; side < 2; ++side) {
+      std::int64_t bytes_in = 0;
+      if (pair[static_cast<std::size_t>(side)].src >= 0)
+        std::memcpy(&bytes_in, counts_in[static_cast<std::size_t>(side)].data(), sizeof bytes_in);
+      rbufs_[static_cast<std::size_t>(side)].resize(static_cast<std::size_t>(bytes_in));
+      transfers_[static_cast<std::size_t>(side)] = {&sbufs_[static_cast<std::size_t>(side)],
+                                                    pair[static_cast<std::size_t>(side)].dest,
+                                                    &rbufs_[static_cast<std::size_t>(side)],
+                                                    pair[static_cast<std::size_t>(side)].src, tag + 2 * side + 1};
+    }
+    comm_.sendrecv_known(transfers_);
+    tag += 4;
+    for (int side = 0; side < 2; ++side) {
+      Swap& sw = pair[static_cast<std::size_t>(side)];
+      const auto& rb = rbufs_[static_cast<std::size_t>(side)];
       sw.recv_start = p.size();
-      sw.recv_count = rbuf_.size() / rec;
-      for (std::size_t k = 0; k < sw.recv_count; ++k) p.unpack_ghost(rbuf_.data() + k * rec, sw.recv_shift);
+      sw.recv_count = sw.src >= 0 ? rb.size() / rec : 0;
+      p.unpack_ghosts(rb.data(), sw.recv_count, sw.recv_shift);
       if (sw.shear_side != 0) {
         // Displaced along the flow (into the cell's range there: the rank
         // holds the whole flow axis) and moving with the image.
@@ -335,6 +365,8 @@ void Exchange::drop_unlisted_images(ParticleStore& p, NeighborList& list) {
   // (Per ghost only: the owned grains all stay.)
   const std::size_t n = p.n_owned(), ghosts = p.n_ghost();
   if (ghosts == 0) return;
+  // Without an image of this rank's own (no periodic axis held whole), none can go.
+  if (std::none_of(swaps_.begin(), swaps_.end(), [&](const Swap& sw) { return local(sw); })) return;
   std::vector<char> need(ghosts, 0);
   auto mark = [&](std::size_t i) {
     if (i >= n) need[i - n] = 1;

@@ -101,7 +101,8 @@ class Exchange {
   /// Bytes held by the send lists and the message buffers (memory report;
   /// at their capacity: a buffer is written up to the largest message it held).
   std::size_t memory_bytes() const {
-    std::size_t b = (sbuf_.capacity() + rbuf_.capacity()) + swaps_.capacity() * sizeof(Swap);
+    std::size_t b = swaps_.capacity() * sizeof(Swap);
+    for (int k = 0; k < 2; ++k) b += sbufs_[k].capacity() + rbufs_[k].capacity();
     for (const auto& sw : swaps_) b += sw.send.capacity() * sizeof(std::uint32_t) + sw.flow_wrap.capacity();
     return b;
   }
@@ -136,8 +137,7 @@ class Exchange {
   ExchangeOptions opt_;
   bool keep_cuts_once_ = false;  // the next migrate() does not rebalance (restored cuts)
   std::vector<Swap> swaps_;
-  std::vector<char> sbuf_, rbuf_;
-  std::array<std::vector<char>, 2> sbufs_, rbufs_;  // a dimension's two ghost updates
+  std::array<std::vector<char>, 2> sbufs_, rbufs_;  // a dimension's two swaps' messages
   std::vector<Comm::Transfer> transfers_;
   Stats stats_;
 };
