@@ -596,26 +596,68 @@ void NeighborList::build_gather(const ParticleStore& p) {
     }
   std::partial_sum(gather_start.begin(), gather_start.end(), gather_start.begin());
   assign_huge(gather_entry, std::size_t{gather_start.back()}, std::uint32_t{0});
-  // Each particle's entries, and beside each the other particle's local
-  // index (the row is known here; finding it later from the entry took a
-  // bisection of row_start per entry), then ordered by its global id.
-  std::vector<std::uint32_t> other(gather_entry.size());
-  std::vector<std::uint32_t> fill(gather_start.begin(), gather_start.end() - 1);
-  for (std::size_t i = 0; i < rows; ++i)
-    for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
-      if (i < n) {
-        other[fill[i]] = partner[k];
-        gather_entry[fill[i]++] = 2 * k;
+  // Each owned grain's entries in the order of the other grain's global id,
+  // without a sort per grain: the other grains are visited in id order and
+  // each hands its entries to the grain on their other side, whose list so
+  // fills in order. A grain's entries as a partner come from the list's
+  // transpose (the rows of the entries that name it).
+  std::vector<std::uint32_t> as_partner_start(rows + 1, 0), as_partner(partner.size()), as_partner_row(partner.size());
+  for (auto j : partner) ++as_partner_start[j + 1];
+  std::partial_sum(as_partner_start.begin(), as_partner_start.end(), as_partner_start.begin());
+  {
+    std::vector<std::uint32_t> fill(as_partner_start.begin(), as_partner_start.end() - 1);
+    for (std::size_t i = 0; i < rows; ++i)
+      for (auto k = row_start[i]; k < row_start[i + 1]; ++k) {
+        const auto q = fill[partner[k]]++;
+        as_partner[q] = k;
+        as_partner_row[q] = static_cast<std::uint32_t>(i);
       }
-      if (partner[k] < n) {
-        other[fill[partner[k]]] = static_cast<std::uint32_t>(i);
-        gather_entry[fill[partner[k]]++] = 2 * k + 1;
-      }
+  }
+  // The local grains by global id (a grain and its periodic image share
+  // one: by local index), by counting when the ids are dense enough.
+  std::vector<std::uint32_t> by_id(rows);
+  std::iota(by_id.begin(), by_id.end(), std::uint32_t{0});
+  if (rows > 0) {
+    const auto [lo, hi] = std::minmax_element(p.id.begin(), p.id.begin() + static_cast<std::ptrdiff_t>(rows));
+    const auto span = static_cast<std::uint64_t>(*hi - *lo);
+    if (span < 4 * static_cast<std::uint64_t>(rows) + 1024) {
+      std::vector<std::uint32_t> start(static_cast<std::size_t>(span) + 2, 0);
+      for (std::size_t i = 0; i < rows; ++i) ++start[static_cast<std::size_t>(p.id[i] - *lo) + 1];
+      std::partial_sum(start.begin(), start.end(), start.begin());
+      for (std::size_t i = 0; i < rows; ++i)
+        by_id[start[static_cast<std::size_t>(p.id[i] - *lo)]++] = static_cast<std::uint32_t>(i);
+    } else {
+      std::stable_sort(by_id.begin(), by_id.end(), [&](std::uint32_t x, std::uint32_t y) { return p.id[x] < p.id[y]; });
     }
+  }
+  // Each grain's entries then by the other's id; two others of one id (a
+  // grain and an image) by code, as a sort by (id, code) orders them: the
+  // grains that meet such a pair are sorted afterwards (rare).
+  std::vector<std::uint32_t> fill(gather_start.begin(), gather_start.end() - 1);
+  std::vector<std::int64_t> last_id(n, -1);
+  std::vector<std::uint32_t> tied;
+  const auto append = [&](std::size_t i, std::uint32_t code, std::int64_t other_id) {
+    if (last_id[i] == other_id && (tied.empty() || tied.back() != i)) tied.push_back(static_cast<std::uint32_t>(i));
+    last_id[i] = other_id;
+    gather_entry[fill[i]++] = code;
+  };
+  for (const auto o : by_id) {
+    const std::int64_t id_o = p.id[o];
+    for (auto k = row_start[o]; k < row_start[o + 1]; ++k)  // o the row: its partner's side 1
+      if (partner[k] < n) append(partner[k], 2 * k + 1, id_o);
+    for (auto q = as_partner_start[o]; q < as_partner_start[o + 1]; ++q)  // o the partner: the row's side 0
+      if (as_partner_row[q] < n) append(as_partner_row[q], 2 * as_partner[q], id_o);
+  }
+  const auto row_of = [&](std::uint32_t k) {
+    return static_cast<std::size_t>(std::upper_bound(row_start.begin(), row_start.end(), k) - row_start.begin()) - 1;
+  };
   std::vector<std::pair<std::int64_t, std::uint32_t>> tmp;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (const auto i : tied) {
     tmp.clear();
-    for (auto g = gather_start[i]; g < gather_start[i + 1]; ++g) tmp.emplace_back(p.id[other[g]], gather_entry[g]);
+    for (auto g = gather_start[i]; g < gather_start[i + 1]; ++g) {
+      const std::uint32_t code = gather_entry[g], k = code >> 1;
+      tmp.emplace_back(p.id[(code & 1u) ? row_of(k) : partner[k]], code);
+    }
     std::sort(tmp.begin(), tmp.end());
     for (std::size_t m = 0; m < tmp.size(); ++m) gather_entry[gather_start[i] + m] = tmp[m].second;
   }
