@@ -176,7 +176,8 @@ TEST(Summary, MemoryPerParticleAndSetUpTimes) {
 
 // Ordered force sums (parallel.deterministic) hold each list entry's two
 // sides, force and torques, 96 bytes, and with the sphere lanes (the compact
-// layout) the entry's record, 4 bytes, beside one zero record: the memory
+// layout) a record of 72 (f, ti, tj) and its slot, 4 bytes, beside one zero
+// record: the memory
 // report counts them (with the gather's order), and a run in list order
 // holds none.
 TEST(Summary, MemoryCountsOrderedSums) {
@@ -187,10 +188,11 @@ TEST(Summary, MemoryCountsOrderedSums) {
   const std::string ordered = run_json(true), plain = run_json(false);
   const double partners = json_number(ordered, "neighbor_partners");  // 4 bytes per list entry
   ASSERT_GT(partners, 0.0) << ordered;
-  // (Bytes per grain: the zero record's 96 shared by all.)
-  const double entries = partners / 4, lanes = sim::sphere_lanes_enabled() ? 1 : 0;
+  // (Bytes per grain: the zero record's 72 shared by all.)
+  const double entries = partners / 4;
+  const bool lanes = sim::sphere_lanes_enabled();
   EXPECT_DOUBLE_EQ(json_number(ordered, "ordered_sums_entry_forces"),
-                   entries * (96 + 4 * lanes) + lanes * 96 / json_number(ordered, "particles_end"))
+                   lanes ? entries * (72 + 4) + 72 / json_number(ordered, "particles_end") : entries * 96)
       << ordered;
   EXPECT_GT(json_number(ordered, "neighbor_ordered_sums"), 0.0) << ordered;
   EXPECT_EQ(json_number(plain, "ordered_sums_entry_forces"), -1.0) << plain;  // absent: none held
