@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -29,20 +28,13 @@ namespace grains::sim {
 /// alone. An entry not in contact holds zeros.
 ///
 /// The compact layout (the sphere lanes, resize_compact): entry k's sides
-/// come from record slot[k], records 1, 2, ... holding the entries in
-/// contact as they come and record 0 zeros, so that a step writes the
-/// records of the contacts and four bytes for every other entry (not the
-/// whole array). A record is (f, ti, tj), kRecord doubles: the partner's
-/// side is -f (the gather multiplies by -1, exact) and tj. The gather adds
-/// the same values in the same order either way.
+/// are record slot[k]'s, records 1, 2, ... holding the entries in contact
+/// as they come and record 0 zeros, so that a step writes the records of
+/// the contacts and four bytes for every other entry (not the whole array).
+/// The gather adds the same values in the same order either way.
 struct EntryForces {
   template <bool Rotation>
   static constexpr std::size_t kSide = Rotation ? 6 : 3;
-  /// A record of the compact layout: f, then (with rotation) ti and tj; the
-  /// partner's side is -f and tj, which the gather takes from it (a - f is
-  /// a + (-f) to the bit). 72 bytes a contact instead of 96.
-  template <bool Rotation>
-  static constexpr std::size_t kRecord = Rotation ? 9 : 3;
   std::vector<double> v;
   std::vector<std::uint32_t> slot;  // the compact layout: entry -> record
   bool compact = false;
@@ -58,8 +50,8 @@ struct EntryForces {
   template <bool Rotation>
   void resize_compact(std::size_t entries) {
     compact = true;
-    v.resize((entries + 1) * kRecord<Rotation>);
-    std::fill_n(v.begin(), kRecord<Rotation>, 0.0);
+    v.resize((entries + 1) * 2 * kSide<Rotation>);
+    std::fill_n(v.begin(), 2 * kSide<Rotation>, 0.0);
     slot.resize(entries);
   }
   /// Entries [k0, k1) not in contact (until put), in the compact layout.
@@ -70,9 +62,7 @@ struct EntryForces {
   template <bool Rotation>
   void put(std::uint32_t rec, std::size_t k, const Vec3& f, const Vec3& ti, const Vec3& tj) {
     slot[k] = rec;
-    double* q = v.data() + std::size_t{rec} * kRecord<Rotation>;
-    q[0] = f.x(), q[1] = f.y(), q[2] = f.z();
-    if constexpr (Rotation) q[3] = ti.x(), q[4] = ti.y(), q[5] = ti.z(), q[6] = tj.x(), q[7] = tj.y(), q[8] = tj.z();
+    set<Rotation>(rec, f, ti, tj);
   }
   /// put, with the record's stores past the cache (non-temporal): for a bed
   /// whose records leave the cache before the gather reads them, the stores
@@ -82,16 +72,16 @@ struct EntryForces {
   /// stream_fence() must follow before any thread reads the records.
   template <bool Rotation>
   void put_stream(std::uint32_t rec, std::size_t k, const Vec3& f, const Vec3& ti, const Vec3& tj) {
-#if defined(__SSE2__) && defined(__x86_64__)
+#if defined(__SSE2__)
     static_assert(Rotation, "written for the sphere lanes' records (with rotation), the only ones streamed");
+    static_assert(__STDCPP_DEFAULT_NEW_ALIGNMENT__ >= 16, "records (12 doubles) on 16-byte boundaries");
     slot[k] = rec;
-    auto* const q = reinterpret_cast<long long*>(v.data() + std::size_t{rec} * kRecord<Rotation>);
-    const double d[9] = {f.x(), f.y(), f.z(), ti.x(), ti.y(), ti.z(), tj.x(), tj.y(), tj.z()};
-    for (int c = 0; c < 9; ++c) {  // (records of 72 bytes: 8-byte stores)
-      long long bits;
-      std::memcpy(&bits, d + c, sizeof bits);
-      _mm_stream_si64(q + c, bits);
-    }
+    double* const q = v.data() + std::size_t{rec} * 2 * kSide<Rotation>;
+    // set()'s layout, two doubles at a time (_mm_set_pd(hi, lo)); the lanes
+    // test compares the ordered sums it gives with the scalar loop's bitwise.
+    _mm_stream_pd(q, _mm_set_pd(f.y(), f.x())), _mm_stream_pd(q + 2, _mm_set_pd(ti.x(), f.z()));
+    _mm_stream_pd(q + 4, _mm_set_pd(ti.z(), ti.y())), _mm_stream_pd(q + 6, _mm_set_pd(-f.y(), -f.x()));
+    _mm_stream_pd(q + 8, _mm_set_pd(tj.x(), -f.z())), _mm_stream_pd(q + 10, _mm_set_pd(tj.z(), tj.y()));
 #else
     put<Rotation>(rec, k, f, ti, tj);
 #endif
@@ -99,7 +89,7 @@ struct EntryForces {
   /// Orders this thread's put_stream stores before its later ones (and so
   /// before an OpenMP barrier's).
   static void stream_fence() {
-#if defined(__SSE2__) && defined(__x86_64__)
+#if defined(__SSE2__)
     _mm_sfence();
 #endif
   }
@@ -125,7 +115,7 @@ struct EntryForces {
   /// The force of entry k on its row particle.
   template <bool Rotation>
   Vec3 force(std::size_t k) const {
-    const double* q = compact ? v.data() + std::size_t{slot[k]} * kRecord<Rotation> : v.data() + k * 2 * kSide<Rotation>;
+    const double* q = v.data() + (compact ? std::size_t{slot[k]} : k) * 2 * kSide<Rotation>;
     return {q[0], q[1], q[2]};
   }
 };
@@ -138,7 +128,6 @@ namespace detail {
 template <bool Rotation, bool Prefetch>
 inline void gather_compact(ParticleStore& p, const NeighborList& nl, const EntryForces& e) {
   constexpr std::size_t S = EntryForces::kSide<Rotation>;
-  constexpr std::size_t R = EntryForces::kRecord<Rotation>;
   constexpr std::size_t kSlotAhead = 256, kRecordAhead = 128;
   const auto n = static_cast<std::ptrdiff_t>(p.n_owned());
   const double* const v = e.v.data();
@@ -155,17 +144,14 @@ inline void gather_compact(ParticleStore& p, const NeighborList& nl, const Entry
         if (g + kSlotAhead < total) __builtin_prefetch(slot + (gather_entry[g + kSlotAhead] >> 1));
         if (g + kRecordAhead < total) {
           const std::uint32_t c = gather_entry[g + kRecordAhead];
-          const double* const r = v + std::size_t{slot[c >> 1]} * R;
+          const double* const r = v + (2 * std::size_t{slot[c >> 1]} + (c & 1u)) * S;
           __builtin_prefetch(r);
-          __builtin_prefetch(r + R - 1);
+          __builtin_prefetch(r + S - 1);
         }
       }
       const std::uint32_t code = gather_entry[g];  // 2 k + side
-      const double* const q = v + std::size_t{slot[code >> 1]} * R;
-      const double sign = (code & 1u) ? -1.0 : 1.0;  // the partner's side: -f (exact)
-      for (std::size_t c = 0; c < 3; ++c) a[c] += sign * q[c];
-      if constexpr (Rotation)
-        for (std::size_t c = 0; c < 3; ++c) a[3 + c] += q[3 + 3 * (code & 1u) + c];
+      const double* const q = v + (2 * std::size_t{slot[code >> 1]} + (code & 1u)) * S;
+      for (std::size_t c = 0; c < S; ++c) a[c] += q[c];
     }
     p.f[i] += Vec3(a[0], a[1], a[2]);
     if constexpr (Rotation) p.torque[i] += Vec3(a[3], a[4], a[5]);

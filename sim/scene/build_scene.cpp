@@ -13,8 +13,6 @@
 #include "contact/ellipsoid/ellipsoid.hpp"
 #include "sim/insert/insertion_stage.hpp"
 #include "sim/laws/contact_law.hpp"
-#include "sim/laws/entry_forces.hpp"
-#include "sim/laws/sphere_lanes.hpp"
 #include "sim/laws/normal_laws.hpp"
 #include "sim/scene/placement.hpp"
 #include "sim/scene/shear_pressure_stage.hpp"
@@ -296,14 +294,6 @@ Scene build_scene(SceneConfig& c) {
   s.memory.particles = planned_particles(c);
   s.memory.field_bytes = static_cast<double>(s.particles.record_bytes());
   s.memory.list_bytes = 2 * (4.0 * (4 + 1 + 8.0 * need.history_size) + 4) + 24 + 8;
-  {
-    // (The pair stages' layouts, sim/laws/entry_forces.hpp: the sphere lanes
-    // run Hertz–Mindlin without rolling or cohesion on spheres.)
-    const bool lanes = c.normal.name == "hertz" && need.tangential && need.rolling_law == "none" &&
-                       need.cohesion_law == "none" && !need.ellipsoids && need.rotation && sphere_lanes_enabled();
-    const double record = lanes ? 8.0 * EntryForces::kRecord<true> + 4 : 2 * 8.0 * (need.rotation ? 6 : 3);
-    s.memory.ordered_entry_bytes = record + 2 * 4;
-  }
   if (const double avail = available_memory(); avail > 0) {
     const double ranks = static_cast<double>(Comm::world().size());
     const std::int64_t certain = planned_particles(c, true);
@@ -443,10 +433,12 @@ void setup_parallel(Scene& s, SceneConfig& c, double rmax) {
                          " OpenMP threads: threads always sum the contact forces in order (OMP_NUM_THREADS=1 "
                          "for sums in list order)");
   s.neighbors.set_gather(s.deterministic);
-  // Ordered sums hold, per list entry, its forces and the gather's order
-  // (build_scene), about 4 list entries per grain in a dense bed, as in the
-  // estimate above, and the gather's start per grain (docs/memory.md).
-  if (s.deterministic) s.memory.list_bytes += 4.0 * s.memory.ordered_entry_bytes + 4;
+  // Ordered sums hold, per list entry, both sides' force (and torques) and
+  // the gather's order (and, in the sphere lanes' compact layout, each
+  // entry's record: 4 bytes, counted for every kind), about 4 list entries
+  // per grain in a dense bed, as in the estimate above (docs/memory.md).
+  if (s.deterministic)
+    s.memory.list_bytes += 4.0 * (2 * (s.particles.fields().has(Field::Torque) ? 6 : 3) * 8.0 + 2 * 4 + 4) + 4;
   if (!comm.parallel() && !s.domain.any_periodic()) return;
   // Ghost cut-off: the largest pair cut-off, plus how far a clump's ball may
   // lie from the centre of mass that decides its rank.

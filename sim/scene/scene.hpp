@@ -177,10 +177,6 @@ struct Scene {
     std::int64_t particles = 0;  // particle records the case asks for (sets and insertions)
     double field_bytes = 0;      // per particle: every allocated field, wall history included (exact)
     double list_bytes = 0;       // per particle: neighbour-list rows of a dense bed (estimate)
-    /// Per list entry with ordered sums: the entry's forces (the sphere
-    /// lanes' compact record and its number, or both sides) and its two
-    /// gather codes (exact).
-    double ordered_entry_bytes = 0;
     double total() const { return static_cast<double>(particles) * (field_bytes + list_bytes); }
   } memory;
 };

@@ -176,8 +176,7 @@ TEST(Summary, MemoryPerParticleAndSetUpTimes) {
 
 // Ordered force sums (parallel.deterministic) hold each list entry's two
 // sides, force and torques, 96 bytes, and with the sphere lanes (the compact
-// layout) a record of 72 (f, ti, tj) and its slot, 4 bytes, beside one zero
-// record: the memory
+// layout) the entry's record, 4 bytes, beside one zero record: the memory
 // report counts them (with the gather's order), and a run in list order
 // holds none.
 TEST(Summary, MemoryCountsOrderedSums) {
@@ -188,11 +187,10 @@ TEST(Summary, MemoryCountsOrderedSums) {
   const std::string ordered = run_json(true), plain = run_json(false);
   const double partners = json_number(ordered, "neighbor_partners");  // 4 bytes per list entry
   ASSERT_GT(partners, 0.0) << ordered;
-  // (Bytes per grain: the zero record's 72 shared by all.)
-  const double entries = partners / 4;
-  const bool lanes = sim::sphere_lanes_enabled();
+  // (Bytes per grain: the zero record's 96 shared by all.)
+  const double entries = partners / 4, lanes = sim::sphere_lanes_enabled() ? 1 : 0;
   EXPECT_DOUBLE_EQ(json_number(ordered, "ordered_sums_entry_forces"),
-                   lanes ? entries * (72 + 4) + 72 / json_number(ordered, "particles_end") : entries * 96)
+                   entries * (96 + 4 * lanes) + lanes * 96 / json_number(ordered, "particles_end"))
       << ordered;
   EXPECT_GT(json_number(ordered, "neighbor_ordered_sums"), 0.0) << ordered;
   EXPECT_EQ(json_number(plain, "ordered_sums_entry_forces"), -1.0) << plain;  // absent: none held
