@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 
 #ifdef GRAINS_HAVE_MPI
@@ -175,27 +176,6 @@ std::vector<std::int64_t> Comm::all_gather(std::int64_t local) const {
   return out;
 }
 
-void Comm::sendrecv(const std::vector<char>& send, [[maybe_unused]] int dest, std::vector<char>& recv,
-                    [[maybe_unused]] int src, [[maybe_unused]] int tag) const {
-#ifdef GRAINS_HAVE_MPI
-  if (parallel() && !(dest == rank_ && src == rank_)) {
-    if (dest < 0) dest = MPI_PROC_NULL;
-    if (src < 0) src = MPI_PROC_NULL;
-    std::int64_t ns = static_cast<std::int64_t>(send.size()), nr = 0;
-    check(MPI_Sendrecv(&ns, 1, MPI_INT64_T, dest, tag, &nr, 1, MPI_INT64_T, src, tag, MPI_COMM_WORLD,
-                       MPI_STATUS_IGNORE),
-          "Sendrecv");
-    recv.resize(static_cast<std::size_t>(nr));
-    check(MPI_Sendrecv(send.data(), static_cast<int>(ns), MPI_BYTE, dest, tag + 1, recv.data(), static_cast<int>(nr),
-                       MPI_BYTE, src, tag + 1, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
-          "Sendrecv");
-    return;
-  }
-#endif
-  if (src < 0) recv.clear();
-  else recv = send;
-}
-
 void Comm::sendrecv_known(std::vector<Transfer>& transfers) const {
 #ifdef GRAINS_HAVE_MPI
   if (parallel()) {
@@ -225,6 +205,30 @@ void Comm::sendrecv_known(std::vector<Transfer>& transfers) const {
 #endif
   for (auto& t : transfers)
     if (t.src >= 0) std::copy(t.send->begin(), t.send->end(), t.recv->begin());
+}
+
+void Comm::sendrecv(std::vector<Transfer>& transfers) const {
+  std::vector<std::vector<char>> size_out(transfers.size()), size_in(transfers.size());
+  std::vector<Transfer> sizes;
+  sizes.reserve(transfers.size());
+  for (std::size_t k = 0; k < transfers.size(); ++k) {
+    const auto& t = transfers[k];
+    const auto bytes = static_cast<std::int64_t>(t.send->size());
+    size_out[k].resize(sizeof bytes);
+    std::memcpy(size_out[k].data(), &bytes, sizeof bytes);
+    size_in[k].assign(sizeof bytes, 0);
+    sizes.push_back({&size_out[k], t.dest, &size_in[k], t.src, t.tag});
+  }
+  sendrecv_known(sizes);
+  for (std::size_t k = 0; k < transfers.size(); ++k) {
+    auto& t = transfers[k];
+    std::int64_t bytes = 0;
+    if (t.src >= 0) std::memcpy(&bytes, size_in[k].data(), sizeof bytes);
+    t.recv->resize(static_cast<std::size_t>(bytes));
+    t.tag += 1;
+  }
+  sendrecv_known(transfers);
+  for (auto& t : transfers) t.tag -= 1;
 }
 
 std::vector<std::vector<char>> Comm::alltoallv(const std::vector<std::vector<char>>& send) const {

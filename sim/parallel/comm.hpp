@@ -38,15 +38,12 @@ class Comm {
   /// Every rank's value, in rank order.
   std::vector<std::int64_t> all_gather(std::int64_t local) const;
 
-  /// Sends `send` to rank dest and receives from rank src (sizes are
-  /// exchanged first). dest/src may be this rank.
-  void sendrecv(const std::vector<char>& send, int dest, std::vector<char>& recv, int src, int tag) const;
-  /// A send to rank dest and a receive from rank src of a size the receiver
-  /// knows (recv is sized); dest/src may be this rank, or -1 for none.
+  /// A send to rank dest and a receive from rank src; dest/src may be this
+  /// rank, or -1 for none.
   struct Transfer {
     const std::vector<char>* send;
     int dest;
-    std::vector<char>* recv;  // sized by the caller
+    std::vector<char>* recv;  // sized by the caller (sendrecv_known)
     int src;
     int tag;
   };
@@ -55,6 +52,10 @@ class Comm {
   /// instead of each waiting its turn. A transfer to and from this rank is a
   /// copy.
   void sendrecv_known(std::vector<Transfer>& transfers) const;
+  /// The same when the receivers do not know the sizes: all sizes travel
+  /// first (tag and tag + 1 of each transfer are used), the receive buffers
+  /// are sized from them (empty without a source), then all messages.
+  void sendrecv(std::vector<Transfer>& transfers) const;
   /// Sends send[r] to every rank r; returns what each rank sent to us.
   std::vector<std::vector<char>> alltoallv(const std::vector<std::vector<char>>& send) const;
   /// Gathers every rank's bytes on rank 0 (others get an empty result).

@@ -280,19 +280,17 @@ void Exchange::build_ghosts(ParticleStore& p, double time) {
   }
   // A dimension's two swaps (towards -1, then +1) choose from the grains
   // there before either (owned, and the earlier dimensions' ghosts), so
-  // their messages travel together: the counts both ways, then the records
-  // both ways (two rounds per dimension, not four); the ghosts arrive in
-  // the swaps' order.
-  std::array<std::vector<char>, 2> counts_out, counts_in;
+  // their messages travel together (two rounds per dimension, the sizes and
+  // the records, not four); the ghosts arrive in the swaps' order.
   for (const int d : order) {
     if (dec_.dims()[d] == 1 && !domain_.periodic[d]) continue;
     const std::size_t n_sel = p.size();
     const double L = domain_.hi[d] - domain_.lo[d];
     std::array<Swap, 2> pair;
     transfers_.clear();
-    for (int side = 0; side < 2; ++side) {
+    for (std::size_t side = 0; side < 2; ++side) {
       const int dir = side == 0 ? -1 : +1;
-      Swap& sw = pair[static_cast<std::size_t>(side)];
+      Swap& sw = pair[side];
       bool wd = false, ws = false;
       sw.dest = dec_.neighbor(me, d, dir, wd);
       sw.src = dec_.neighbor(me, d, -dir, ws);
@@ -302,41 +300,24 @@ void Exchange::build_ghosts(ParticleStore& p, double time) {
         const int f = domain_.shear.flow;
         sw.offset_periods = std::floor(domain_.shear_travel(time) / (domain_.hi[f] - domain_.lo[f]));
       }
-      auto& sb = sbufs_[static_cast<std::size_t>(side)];
-      sb.clear();
+      sbufs_[side].clear();
       if (sw.dest >= 0) {
         for (std::size_t i = 0; i < n_sel; ++i) {
           const double xd = p.x[i][d];
           const double cut = cut_of(i);
           if (dir < 0 ? xd < lo[d] + cut : xd >= hi[d] - cut) sw.send.push_back(static_cast<std::uint32_t>(i));
         }
-        p.pack_records(sw.send, sb);
+        p.pack_records(sw.send, sbufs_[side]);
       }
-      counts_out[static_cast<std::size_t>(side)].resize(sizeof(std::int64_t));
-      const auto bytes_out = static_cast<std::int64_t>(sb.size());
-      std::memcpy(counts_out[static_cast<std::size_t>(side)].data(), &bytes_out, sizeof bytes_out);
-      counts_in[static_cast<std::size_t>(side)].assign(sizeof(std::int64_t), 0);
-      transfers_.push_back({&counts_out[static_cast<std::size_t>(side)], sw.dest, &counts_in[static_cast<std::size_t>(side)],
-                            sw.src, tag + 2 * side});
+      transfers_.push_back({&sbufs_[side], sw.dest, &rbufs_[side], sw.src, tag + 2 * static_cast<int>(side)});
     }
-    comm_.sendrecv_known(transfers_);
-    for (int side = 0; side < 2; ++side) {
-      std::int64_t bytes_in = 0;
-      if (pair[static_cast<std::size_t>(side)].src >= 0)
-        std::memcpy(&bytes_in, counts_in[static_cast<std::size_t>(side)].data(), sizeof bytes_in);
-      rbufs_[static_cast<std::size_t>(side)].resize(static_cast<std::size_t>(bytes_in));
-      transfers_[static_cast<std::size_t>(side)] = {&sbufs_[static_cast<std::size_t>(side)],
-                                                    pair[static_cast<std::size_t>(side)].dest,
-                                                    &rbufs_[static_cast<std::size_t>(side)],
-                                                    pair[static_cast<std::size_t>(side)].src, tag + 2 * side + 1};
-    }
-    comm_.sendrecv_known(transfers_);
+    comm_.sendrecv(transfers_);
     tag += 4;
-    for (int side = 0; side < 2; ++side) {
-      Swap& sw = pair[static_cast<std::size_t>(side)];
-      const auto& rb = rbufs_[static_cast<std::size_t>(side)];
+    for (std::size_t side = 0; side < 2; ++side) {
+      Swap& sw = pair[side];
+      const auto& rb = rbufs_[side];
       sw.recv_start = p.size();
-      sw.recv_count = sw.src >= 0 ? rb.size() / rec : 0;
+      sw.recv_count = rb.size() / rec;
       p.unpack_ghosts(rb.data(), sw.recv_count, sw.recv_shift);
       if (sw.shear_side != 0) {
         // Displaced along the flow (into the cell's range there: the rank

@@ -197,20 +197,6 @@ void ParticleStore::reserve_more(std::size_t count) {
   });
 }
 
-void ParticleStore::unpack_ghost(const char* rec, const Vec3& shift) {
-  const std::size_t k = size();
-  for_each_field([&](auto& vec, int w) {
-    const std::size_t bytes = sizeof(vec[0]) * static_cast<std::size_t>(w);
-    make_room(vec, static_cast<std::size_t>(w));
-    vec.resize(vec.size() + static_cast<std::size_t>(w));
-    std::memcpy(reinterpret_cast<char*>(vec.data() + vec.size() - static_cast<std::size_t>(w)), rec, bytes);
-    rec += bytes;
-  });
-  x[k] += shift;
-  f[k].setZero();
-  if (fields_.has(Field::Torque)) torque[k].setZero();
-}
-
 void ParticleStore::unpack_ghosts(const char* recs, std::size_t count, const Vec3& shift) {
   if (count == 0) return;
   const std::size_t k0 = size(), rec = record_bytes();

@@ -99,15 +99,13 @@ class ParticleStore {
   std::size_t record_bytes();
   /// Appends the full record of particle i to buf.
   void pack(std::size_t i, std::vector<char>& buf);
-  /// Appends the full records of particles idx[0], idx[1], ... to buf (as
-  /// pack() one by one would, written field by field).
+  /// Appends the full records of particles idx[0], idx[1], ... to buf (what
+  /// pack() writes for each, written field by field).
   void pack_records(const std::vector<std::uint32_t>& idx, std::vector<char>& buf);
   /// Appends an owned particle from a record (no ghosts may be present).
   void unpack_owned(const char* rec);
-  /// Appends a ghost from a record, its position shifted by `shift`.
-  void unpack_ghost(const char* rec, const Vec3& shift);
-  /// Appends `count` ghosts from consecutive records (as unpack_ghost one by
-  /// one would, written field by field).
+  /// Appends `count` ghosts from consecutive records, their positions
+  /// shifted by `shift`, their force and torque zero.
   void unpack_ghosts(const char* recs, std::size_t count, const Vec3& shift);
   /// The fields that change every step (position, velocity and, when they
   /// exist, angular velocity, orientation and shape form): what a ghost
